@@ -1,0 +1,151 @@
+#include "accel/cpu_accelerator.h"
+
+#include <array>
+#include <chrono>
+#include <stdexcept>
+
+#include "accel/brute_force.h"
+#include "accel/bvh.h"
+#include "accel/bvh_traversal.h"
+#include "accel/escape_sequence.h"
+
+namespace passtrace {
+namespace {
+
+struct AcceleratorInfo {
+  const char* name;
+  const char* thesisName;
+  bool implemented;
+};
+
+constexpr std::array<AcceleratorInfo, 8> kAccelerators{{
+    {"kk-bvh", "K/K BVH, sequential", true},
+    {"gs-bvh", "G/S BVH, sequential", false},
+    {"kd-tree", "Kd-tree", false},
+    {"kd-pbrt", "Kd-tree (pbrt)", false},
+    {"grid", "Uniform grid", false},
+    {"kk-bvh-recursive", "K/K BVH, recursive", true},
+    {"gs-bvh-recursive", "G/S BVH, recursive", false},
+    {"octree", "Octree", false},
+}};
+
+const AcceleratorInfo& info(int number) {
+  if (number < 0 || number >= static_cast<int>(kAccelerators.size()))
+    throw std::invalid_argument("accelerator " + std::to_string(number) + " does not exist (valid: 0-7)");
+  return kAccelerators[number];
+}
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Tree shape statistics shared by both K/K forms.
+AccelStats treeStats(int number, const Bvh& bvh) {
+  AccelStats s;
+  s.name = acceleratorName(number);
+  s.nodes = bvh.nodes.size();
+  s.leaves = bvh.leafCount();
+  s.references = s.leaves;
+  s.depth = bvh.depth();
+  s.floatsPerTriangle = s.leaves == 0 ? 0.0 : 8.0 * static_cast<double>(s.nodes - s.leaves) / static_cast<double>(s.leaves);
+  return s;
+}
+
+// 0: the escape-index sequence, traversed as the GPU does. Keeps only the
+// sequence, which carries its own copy of the vertices.
+class SequentialKayKajiya final : public CpuAccelerator {
+public:
+  SequentialKayKajiya(std::span<const Triangle> tris, const AccelBuildConfig& config) {
+    SequenceBuild build = buildKayKajiyaSequence(tris, config.kayKajiya);
+    sequence_ = std::move(build.sequence);
+    stats_ = std::move(build.stats);
+  }
+  Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
+    return traverseEscapeSequence(sequence_, ray, anyHit, stats);
+  }
+  std::string name() const override { return stats_.name; }
+  AccelStats stats() const override { return stats_; }
+
+private:
+  EscapeSequence sequence_;
+  AccelStats stats_;
+};
+
+// 5: the same tree, descended recursively; holds the caller's triangles.
+class RecursiveKayKajiya final : public CpuAccelerator {
+public:
+  RecursiveKayKajiya(std::span<const Triangle> tris, const AccelBuildConfig& config) : tris_(tris) {
+    const auto start = std::chrono::steady_clock::now();
+    bvh_ = buildKayKajiya(tris, config.kayKajiya);
+    const double ms = millisecondsSince(start);
+    stats_ = treeStats(5, bvh_);
+    stats_.buildMs = ms;
+  }
+  Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
+    return traverseBvhRecursive(bvh_, tris_, ray, anyHit, stats);
+  }
+  std::string name() const override { return stats_.name; }
+  AccelStats stats() const override { return stats_; }
+
+private:
+  std::span<const Triangle> tris_;
+  Bvh bvh_;
+  AccelStats stats_;
+};
+
+class BruteForce final : public CpuAccelerator {
+public:
+  explicit BruteForce(std::span<const Triangle> tris) : tris_(tris) {
+    stats_.name = "brute-force";
+    stats_.references = tris.size();
+  }
+  Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
+    return intersectBruteForce(tris_, ray, anyHit, stats);
+  }
+  std::string name() const override { return stats_.name; }
+  AccelStats stats() const override { return stats_; }
+
+private:
+  std::span<const Triangle> tris_;
+  AccelStats stats_;
+};
+
+}  // namespace
+
+SequenceBuild buildKayKajiyaSequence(std::span<const Triangle> tris, const KayKajiyaConfig& config) {
+  const auto start = std::chrono::steady_clock::now();
+  const Bvh bvh = buildKayKajiya(tris, config);
+  SequenceBuild build{flattenEscapeSequence(bvh, tris), treeStats(0, bvh)};
+  build.stats.buildMs = millisecondsSince(start);
+  build.stats.floatsPerTriangle = build.sequence.floatsPerTriangle();
+  return build;
+}
+
+std::unique_ptr<CpuAccelerator> makeCpuAccelerator(int number, std::span<const Triangle> tris,
+                                                   const AccelBuildConfig& config) {
+  const AcceleratorInfo& accel = info(number);
+  if (!accel.implemented)
+    throw std::invalid_argument("accelerator " + std::to_string(number) + " (" + accel.thesisName +
+                                ") is not implemented yet");
+  if (number == 0) return std::make_unique<SequentialKayKajiya>(tris, config);
+  return std::make_unique<RecursiveKayKajiya>(tris, config);  // 5, the only other one implemented
+}
+
+std::unique_ptr<CpuAccelerator> makeBruteForceAccelerator(std::span<const Triangle> tris) {
+  return std::make_unique<BruteForce>(tris);
+}
+
+std::string acceleratorName(int number) { return info(number).name; }
+
+std::string acceleratorThesisName(int number) { return info(number).thesisName; }
+
+int acceleratorNumber(const std::string& nameOrNumber) {
+  for (int i = 0; i < static_cast<int>(kAccelerators.size()); ++i)
+    if (nameOrNumber == kAccelerators[i].name || nameOrNumber == std::to_string(i)) return i;
+  std::string valid;
+  for (int i = 0; i < static_cast<int>(kAccelerators.size()); ++i)
+    valid += (i ? ", " : "") + std::to_string(i) + " " + kAccelerators[i].name;
+  throw std::invalid_argument("unknown accelerator '" + nameOrNumber + "' (valid: " + valid + ")");
+}
+
+}  // namespace passtrace

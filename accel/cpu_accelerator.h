@@ -1,0 +1,83 @@
+#pragma once
+// The one interface the CPU renderer traces through (an aggregate, in pbrt-v4
+// terms), with tracy's accelerator numbering (thesis Table 4, CPU column):
+//
+//   0 kk-bvh            K/K BVH, sequential (escape-index sequence)
+//   1 gs-bvh            G/S BVH, sequential          (not implemented yet)
+//   2 kd-tree           Kd-tree                      (not implemented yet)
+//   3 kd-pbrt           Kd-tree (pbrt)               (not implemented yet)
+//   4 grid              Uniform grid                 (not implemented yet)
+//   5 kk-bvh-recursive  K/K BVH, recursive
+//   6 gs-bvh-recursive  G/S BVH, recursive           (not implemented yet)
+//   7 octree            Octree                       (not implemented yet)
+//
+// Brute force has no number in tracy; makeBruteForceAccelerator gives it.
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+
+#include "accel/escape_sequence.h"
+#include "accel/geometry.h"
+#include "accel/kay_kajiya_builder.h"
+#include "accel/traversal_stats.h"
+
+namespace passtrace {
+
+struct AccelStats {
+  std::string name;               // acceleratorName(), or "brute-force"
+  double buildMs = 0;             // construction (and flattening), steady_clock
+  double floatsPerTriangle = 0;   // thesis Table 3 accounting, triangles excluded
+  size_t nodes = 0;               // tree nodes, internal and leaves
+  size_t leaves = 0;
+  size_t references = 0;          // triangle references (a kd-tree may repeat some)
+  uint32_t depth = 0;             // levels; a single leaf is 1
+};
+
+struct AccelBuildConfig {
+  KayKajiyaConfig kayKajiya;
+  // later: Goldsmith/Salmon tries, grid resolution factor, kd-tree limits
+};
+
+// The K/K tree flattened to its escape-index sequence, and its statistics
+// (buildMs covers construction and flattening). CPU accelerator 0 and the
+// GPU stream renderer's accelerator 0 both start from this.
+struct SequenceBuild {
+  EscapeSequence sequence;
+  AccelStats stats;
+};
+SequenceBuild buildKayKajiyaSequence(std::span<const Triangle> tris, const KayKajiyaConfig& config);
+
+class CpuAccelerator {
+public:
+  virtual ~CpuAccelerator() = default;
+  // Closest hit before ray.tMax, or with anyHit any hit before it. stats, when
+  // given, is added to. Safe to call from many threads at once.
+  virtual Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const = 0;
+  virtual std::string name() const = 0;
+  virtual AccelStats stats() const = 0;
+};
+
+// Builds accelerator `number` (Table 4) over tris. Lifetime: accelerators hold
+// a std::span of tris, so the caller keeps the triangles alive and unchanged
+// for the accelerator's lifetime (number 0 in fact copies the vertices into
+// its sequence, but callers should not rely on that). Throws
+// std::invalid_argument for numbers 1-4, 6, 7 ("accelerator 4 (Uniform grid)
+// is not implemented yet") and for numbers outside 0-7.
+std::unique_ptr<CpuAccelerator> makeCpuAccelerator(int number, std::span<const Triangle> tris,
+                                                   const AccelBuildConfig& config = {});
+
+// Tests every triangle in scene order; holds a span of tris as above.
+std::unique_ptr<CpuAccelerator> makeBruteForceAccelerator(std::span<const Triangle> tris);
+
+// Short names for 0-7 as listed above; throws std::invalid_argument otherwise.
+std::string acceleratorName(int number);
+// The thesis's long name ("K/K BVH, sequential") for 0-7.
+std::string acceleratorThesisName(int number);
+// Parses "0".."7" or a short name; throws std::invalid_argument with a
+// one-line message listing the valid names for anything else.
+int acceleratorNumber(const std::string& nameOrNumber);
+
+}  // namespace passtrace

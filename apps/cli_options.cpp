@@ -1,0 +1,101 @@
+#include "apps/cli_options.h"
+
+#include <charconv>
+#include <iostream>
+#include <stdexcept>
+
+#include <CLI/CLI.hpp>
+
+namespace passtrace {
+namespace {
+
+// "x,y,z" with three finite numbers and nothing else.
+glm::vec3 parseVector(const std::string& option, const std::string& text) {
+  glm::vec3 v;
+  const char* p = text.data();
+  const char* end = text.data() + text.size();
+  for (int i = 0; i < 3; ++i) {
+    auto [next, ec] = std::from_chars(p, end, v[i]);
+    if (ec != std::errc() || !std::isfinite(v[i]) || (i < 2 && (next == end || *next != ',')) ||
+        (i == 2 && next != end))
+      throw std::runtime_error(option + ": expected x,y,z with three finite numbers, got '" + text + "'");
+    p = next + 1;
+  }
+  return v;
+}
+
+}  // namespace
+
+int parseOptions(int argc, char** argv, Options& o) {
+  CLI::App app{"passtrace: ray tracing acceleration structures as OpenGL stream kernels and on the CPU"};
+  app.get_formatter()->column_width(34);
+  int size = 0;
+  std::string eye, lookAt, up;
+  float fov = 0.0f;
+  app.add_option("-r,--renderer", o.renderer, "0 OpenGL rasterized preview, 1 CPU ray tracer, 2 GPU stream ray tracer")
+      ->check(CLI::Range(0, 2))->capture_default_str();
+  app.add_option("-a,--accel", o.accelerator,
+                 "accelerator, number or name: 0 kk-bvh, 1 gs-bvh, 2 kd-tree (GPU: kd-restart), 3 kd-pbrt "
+                 "(GPU: kd-backtrack), 4 grid, 5 kk-bvh-recursive, 6 gs-bvh-recursive, 7 octree")
+      ->capture_default_str();
+  app.add_option("-s,--scene", o.scene, "scene: cornell, bunny, or an .obj file")->capture_default_str();
+  app.add_option("-w,--resolution", size, "render N x N pixels (default 512)")->check(CLI::Range(1, kMaxImageSide));
+  app.add_option("--width", o.width, "image width in pixels")->check(CLI::Range(1, kMaxImageSide));
+  app.add_option("--height", o.height, "image height in pixels")->check(CLI::Range(1, kMaxImageSide));
+  app.add_option("-b,--bounces", o.bounces, "traces per path, primary and shadow rays included; 1 = primary only")
+      ->check(CLI::Range(1, 64))->capture_default_str();
+  app.add_flag("-p,--dump-images", o.dumpImages, "write every rendered image (NAME_k.EXT for -o NAME.EXT)");
+  app.add_option("-t,--gs-tries", o.gsTries, "Goldsmith/Salmon BVH constructions, the cheapest is kept")
+      ->check(CLI::Range(1, 100000))->capture_default_str();
+  app.add_option("-g,--grid-multiplier", o.gridMultiplier, "uniform grid resolution factor")
+      ->check(CLI::Range(0.001f, 1000.0f))->capture_default_str();
+  app.add_option("-e,--kd-min-elements", o.kdMinElements, "kd-tree: fewest triangles for an internal node")
+      ->check(CLI::Range(1, 1000000))->capture_default_str();
+  app.add_option("-d,--kd-max-depth", o.kdMaxDepth, "kd-tree maximum depth (0: 8 + 1.3 log2 N)")
+      ->check(CLI::Range(0, 64))->capture_default_str();
+  app.add_option("-m,--repeats", o.repeats, "timed repeats of each frame; the minimum is reported")
+      ->check(CLI::Range(1, 100000))->capture_default_str();
+  app.add_option("-n,--angles", o.angles,
+                 "camera-path angles to render (thesis figure 27); 1 renders the scene's own view")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  app.add_option("-l,--loop-limit", o.loopLimit, "GPU traversal steps per ray per pass")
+      ->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  app.add_option("-c,--swap-children", o.swapChildren, "K/K BVH: children swapped with probability 0.5 c")
+      ->check(CLI::Range(0, 2))->capture_default_str();
+  app.add_option("--threads", o.threads, "CPU renderer threads (0: all cores)")->capture_default_str();
+  app.add_option("--eye", eye, "camera position x,y,z (default: the scene's view)");
+  app.add_option("--look-at", lookAt, "point the camera looks at x,y,z");
+  app.add_option("--up", up, "camera up vector x,y,z");
+  app.add_option("--fov", fov, "vertical field of view in degrees")->check(CLI::Range(0.001f, 179.999f));
+  app.add_option("-o,--output", o.output, "write the image; the format follows the extension (OpenImageIO)");
+  app.add_option("--hits", o.hits, "write primary-ray hit records as OpenEXR (t, u, v float; id uint32)");
+  app.add_option("--json", o.json, "write the run's measurements as JSON");
+  app.add_option("--gl-backend", o.glBackend, "auto, egl or osmesa")
+      ->check(CLI::IsMember({"auto", "egl", "osmesa"}))->capture_default_str();
+  app.add_flag("-q,--quiet", o.quiet, "print nothing but errors");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    return -1;
+  } catch (const CLI::ParseError& e) {
+    std::string message = e.what();
+    for (char& c : message)
+      if (c == '\n') c = ' ';
+    throw std::runtime_error(message);
+  }
+  if (size > 0) {
+    if (app.count("--width") || app.count("--height"))
+      throw std::runtime_error("-w sets both sides; do not combine it with --width or --height");
+    o.width = o.height = size;
+  }
+  if (!eye.empty()) o.eye = parseVector("--eye", eye);
+  if (!lookAt.empty()) o.lookAt = parseVector("--look-at", lookAt);
+  if (!up.empty()) o.up = parseVector("--up", up);
+  if (app.count("--fov")) o.fov = fov;
+  return 0;
+}
+
+}  // namespace passtrace

@@ -1,0 +1,47 @@
+#pragma once
+// tracy's command line (thesis Appendix A) with descriptive long names, plus
+// passtrace's outputs and camera controls.
+
+#include <optional>
+#include <string>
+
+#include <glm/glm.hpp>
+
+namespace passtrace {
+
+// The command line accepts up to this many pixels on a side; the GPU
+// renderers are further held to the GL's texture limit and the CPU renderer
+// to kMaxCpuPixels.
+inline constexpr int kMaxImageSide = 65536;
+inline constexpr long long kMaxCpuPixels = 16384LL * 16384LL;  // about 20 GiB of path state
+
+struct Options {
+  int renderer = 2;                 // -r: 0 OpenGL preview, 1 CPU, 2 GPU stream
+  std::string accelerator = "0";    // -a: number (thesis Table 4) or name
+  std::string scene = "bunny";      // -s: name or file
+  int width = 512, height = 512;    // -w N, or --width/--height
+  int bounces = 3;                  // -b: traces per path, primary and shadow rays included
+  bool dumpImages = false;          // -p: write every rendered image
+  int gsTries = 10;                 // -t: Goldsmith/Salmon constructions to keep the best of
+  float gridMultiplier = 1.0f;      // -g: uniform grid resolution factor
+  int kdMinElements = 2;            // -e: kd-tree: fewest triangles for an internal node
+  int kdMaxDepth = 0;               // -d: kd-tree maximum depth, 0 = 8 + 1.3 log2 N
+  int repeats = 1;                  // -m: timed repeats, the minimum is reported
+  int angles = 1;                   // -n: camera-path angles
+  int loopLimit = 20;               // -l: GPU traversal steps per pass
+  int swapChildren = 1;             // -c: K/K child swap probability = 0.5 c
+  unsigned threads = 0;             // --threads: CPU renderer threads, 0 = all cores
+  std::optional<glm::vec3> eye, lookAt, up;
+  std::optional<float> fov;
+  std::string output;               // -o
+  std::string hits;                 // --hits (OpenEXR)
+  std::string json;                 // --json
+  std::string glBackend = "auto";   // --gl-backend
+  bool quiet = false;
+};
+
+// Parses argv. Returns 0 with `options` filled, -1 when --help was printed
+// (exit 0), or throws std::runtime_error with a one-line message.
+int parseOptions(int argc, char** argv, Options& options);
+
+}  // namespace passtrace

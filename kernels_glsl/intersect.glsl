@@ -1,0 +1,42 @@
+// The slab test and the Möller–Trumbore test, operation for operation as in
+// accel/geometry.h. `precise` forbids the compiler from fusing or reordering
+// them, so GPU and CPU results agree wherever the driver keeps IEEE order.
+
+vec3 safeInverse(vec3 d) {
+  const float tiny = 1e-20;
+  vec3 signedTiny = mix(vec3(tiny), vec3(-tiny), lessThan(d, vec3(0.0)));
+  return 1.0 / mix(d, signedTiny, lessThan(abs(d), vec3(tiny)));
+}
+
+// Does the ray enter [lo, hi] before tBest, and not entirely behind it? A
+// ray parallel to a slab (|invDir| > 1e19) is inside it for all t or none.
+bool intersectsBox(vec3 origin, vec3 invDir, vec3 lo, vec3 hi, float tBest) {
+  precise vec3 t0 = (lo - origin) * invDir;
+  precise vec3 t1 = (hi - origin) * invDir;
+  bvec3 parallel = greaterThan(abs(invDir), vec3(1e19));
+  bvec3 inside = equal(step(lo, origin) * step(origin, hi), vec3(1.0));
+  vec3 tSmall = mix(min(t0, t1), mix(vec3(INF), vec3(-INF), inside), parallel);
+  vec3 tLarge = mix(max(t0, t1), mix(vec3(-INF), vec3(INF), inside), parallel);
+  float tNear = max(max(tSmall.x, tSmall.y), tSmall.z);
+  float tFar = min(min(tLarge.x, tLarge.y), tLarge.z);
+  return tNear <= tFar && tFar >= 0.0 && tNear < tBest;
+}
+
+// Two-sided Möller–Trumbore. `hit` is (t, u, v, packed id); it is replaced
+// when the triangle is hit in front of the origin and strictly before hit.x.
+bool intersectTriangle(vec3 origin, vec3 dir, vec3 a, vec3 b, vec3 c, float packedId, inout vec4 hit) {
+  precise vec3 e1 = b - a;
+  precise vec3 e2 = c - a;
+  precise vec3 p = cross(dir, e2);
+  precise float det = dot(p, e1);
+  if (det == 0.0) return false;
+  precise float invDet = 1.0 / det;
+  precise vec3 tvec = origin - a;
+  precise float u = dot(p, tvec) * invDet;
+  precise vec3 q = cross(tvec, e1);
+  precise float v = dot(q, dir) * invDet;
+  precise float t = dot(q, e2) * invDet;
+  if (!(u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 0.0 && t < hit.x)) return false;
+  hit = vec4(t, u, v, packedId);
+  return true;
+}

@@ -1,0 +1,35 @@
+// Runs one shared GLSL function per element so tests can compare it with its
+// C++ twin (tests/stream_kernels_test.cpp). Chosen by a define:
+//   TEST_FETCH:    out = fetchTexel(uData, element index)
+//   TEST_SLAB:     out.x = intersectsBox(origin in0, invDir of in1, lo in2, hi in3, tBest in3.w)
+//   TEST_TRIANGLE: out = the hit after intersectTriangle(origin in0, dir in1, a in2, b in3, c in4, id in4.w)
+//                  from a hit record (tBest in1.w, 0, 0, -1)
+#include "texel_address.glsl"
+#include "intersect.glsl"
+
+uniform sampler2D uData;
+uniform sampler2D uIn0;
+uniform sampler2D uIn1;
+uniform sampler2D uIn2;
+uniform sampler2D uIn3;
+uniform sampler2D uIn4;
+uniform int uWidth;
+
+layout(location = 0) out vec4 outResult;
+
+void main() {
+#if defined(TEST_FETCH)
+  uint index = uint(gl_FragCoord.y) * uint(uWidth) + uint(gl_FragCoord.x);
+  outResult = fetchTexel(uData, widthLog2Of(uData), index);
+#elif defined(TEST_SLAB)
+  vec4 hi = readElement(uIn3);
+  bool hit = intersectsBox(readElement(uIn0).xyz, safeInverse(readElement(uIn1).xyz), readElement(uIn2).xyz, hi.xyz, hi.w);
+  outResult = vec4(hit ? 1.0 : 0.0, 0.0, 0.0, 0.0);
+#elif defined(TEST_TRIANGLE)
+  vec4 dir = readElement(uIn1);
+  vec4 c = readElement(uIn4);
+  vec4 hit = vec4(dir.w, 0.0, 0.0, -1.0);
+  intersectTriangle(readElement(uIn0).xyz, dir.xyz, readElement(uIn2).xyz, readElement(uIn3).xyz, c.xyz, c.w, hit);
+  outResult = hit;
+#endif
+}

@@ -1,0 +1,31 @@
+#include "render/camera.h"
+
+#include <cmath>
+
+namespace passtrace {
+
+CameraBasis makeCameraBasis(const CameraSpec& camera, int width, int height) {
+  if (width < 1 || height < 1) throw std::invalid_argument("image size must be at least 1x1");
+  if (!(camera.fovDegrees > 0.0f && camera.fovDegrees < 180.0f))
+    throw std::invalid_argument("field of view must be between 0 and 180 degrees");
+  const glm::vec3 view = camera.lookAt - camera.eye;
+  if (!(glm::dot(view, view) > 0.0f)) throw std::invalid_argument("camera eye and look-at point coincide");
+  const glm::vec3 forward = glm::normalize(view);
+  const glm::vec3 side = glm::cross(forward, camera.up);
+  if (!(glm::length(side) > 1e-6f * glm::length(camera.up)))
+    throw std::invalid_argument("camera up vector is zero or parallel to the view direction");
+  const glm::vec3 right = glm::normalize(side);
+  return CameraBasis{camera.eye, forward, right, glm::cross(right, forward),
+                     std::tan(glm::radians(camera.fovDegrees) * 0.5f), width, height};
+}
+
+Ray primaryRay(const CameraBasis& b, int px, int py) {
+  const float w = float(b.width), h = float(b.height);
+  // Written as raygen.frag writes it, so both round alike.
+  const float sx = (2.0f * (float(px) + 0.5f) / w - 1.0f) * b.tanHalfFov * (w / h);
+  const float sy = (1.0f - 2.0f * (float(py) + 0.5f) / h) * b.tanHalfFov;
+  const glm::vec3 d = b.forward + sx * b.right + sy * b.up;
+  return Ray{b.eye, d / std::sqrt(glm::dot(d, d)), kInfinity};
+}
+
+}  // namespace passtrace

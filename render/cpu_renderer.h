@@ -1,0 +1,25 @@
+#pragma once
+// The CPU renderer (-r 1): the same rays, bounces and shading as the GPU
+// stream renderer, one wavefront per bounce over all pixels, traced through
+// any CpuAccelerator on all cores.
+
+#include "accel/cpu_accelerator.h"
+#include "render/frame_result.h"
+#include "scenes/scene.h"
+
+namespace passtrace {
+
+class CpuRenderer {
+ public:
+  // `scene` and `accelerator` must outlive the renderer. threads = 0: all cores.
+  CpuRenderer(const Scene& scene, const CpuAccelerator& accelerator, unsigned threads = 0);
+
+  FrameResult render(const CameraSpec& camera, int width, int height, int bounces, bool captureHits);
+
+ private:
+  const Scene& scene_;
+  const CpuAccelerator& accelerator_;
+  unsigned threads_;
+};
+
+}  // namespace passtrace

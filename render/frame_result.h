@@ -1,0 +1,32 @@
+#pragma once
+// What one rendered frame hands back, whichever renderer made it.
+
+#include <cstdint>
+#include <vector>
+
+#include "accel/geometry.h"
+#include "render/image_output.h"
+
+namespace passtrace {
+
+struct FrameStats {
+  uint64_t rays = 0;           // all rays traced: primary, shadow and reflection
+  uint64_t passes = 0;         // traversal passes (GPU); bounces traced (CPU)
+  uint64_t steps = 0;          // traversal steps of all rays
+  uint64_t triangleTests = 0;  // triangle tests of all rays
+  double frameMs = 0;          // ray generation through the last shading pass
+};
+
+struct FrameResult {
+  int width = 0, height = 0;
+  std::vector<float> rgb;                // width*height*3, row 0 the top row
+  std::vector<HitRecord> primaryHits;    // filled when asked for
+  FrameStats stats;
+};
+
+// A miss in hit records: id 4294967295 with t = +inf.
+inline HitRecord hitRecordOf(const Hit& hit) {
+  return hit.found() ? HitRecord{hit.t, hit.u, hit.v, hit.id} : HitRecord{kInfinity, 0.0f, 0.0f, kNoHit};
+}
+
+}  // namespace passtrace

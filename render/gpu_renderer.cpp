@@ -1,0 +1,100 @@
+#include "render/gpu_renderer.h"
+
+#include <chrono>
+
+#include "render/camera.h"
+#include "render/ray_stream_layout.h"
+#include "render/scene_streams.h"
+#include "render/shading.h"
+#include "stream/texel_address.h"
+
+namespace passtrace {
+namespace {
+
+const std::vector<int> kAllSurfaces = {kOriginSurface,  kDirectionSurface,  kStateSurface,  kHitSurface,
+                                       kColorSurface,   kThroughputSurface, kPendingSurface};
+
+using Clock = std::chrono::steady_clock;
+
+}  // namespace
+
+GpuRenderer::GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width, int height)
+    : scene_(scene),
+      traversal_(traversal),
+      rays_(width, height, kRaySurfaceCount),
+      triangles_(triangleShadingTexels(scene), "triangle shading data"),
+      materials_(materialTexels(scene), "materials"),
+      raygen_("raygen", "raygen.frag"),
+      cull_("cull", "cull.frag", StreamKernel::Depth::Cull),
+      shade_("shade", "shade.frag") {
+  cull_.bindInput("uState", rays_, kStateSurface);
+  const char* samplers[] = {"uOrigin", "uDirection", "uState", "uHit", "uColor", "uThroughput", "uPending"};
+  for (int s : kAllSurfaces) shade_.bindInput(samplers[s], rays_, s);
+  shade_.bindInput("uTriangles", triangles_);
+  shade_.bindInput("uMaterials", materials_);
+  shade_.set("uLightPosition", scene.light.position);
+  shade_.set("uLightColor", scene.light.color);
+  shade_.set("uBackground", scene.background);
+  shade_.set("uAmbient", scene.ambient);
+  shade_.set("uEpsilon", secondaryRayEpsilon(scene));
+}
+
+uint64_t GpuRenderer::retireFinished() { return cull_.execute(true); }
+
+FrameResult GpuRenderer::render(const CameraSpec& camera, int bounces, bool captureHits) {
+  const CameraBasis basis = makeCameraBasis(camera, rays_.width(), rays_.height());
+  FrameResult result;
+  result.width = rays_.width();
+  result.height = rays_.height();
+  const uint64_t elements = rays_.elementCount();
+
+  rays_.enable();
+  glFinish();  // start the clock on an idle pipeline
+  Clock::duration excluded{};
+  const auto start = Clock::now();
+
+  raygen_.set("uEye", basis.eye);
+  raygen_.set("uForward", basis.forward);
+  raygen_.set("uRight", basis.right);
+  raygen_.set("uUp", basis.up);
+  raygen_.set("uTanHalfFov", basis.tanHalfFov);
+  raygen_.set("uResolution", glm::vec2(basis.width, basis.height));
+  rays_.clearDepth(1.0f);
+  rays_.setWriteSurfaces(kAllSurfaces);
+  raygen_.execute();
+
+  for (int bounce = 1; bounce <= bounces; ++bounce) {
+    rays_.clearDepth(1.0f);
+    const uint64_t active = elements - retireFinished();
+    if (active == 0) break;
+    result.stats.rays += active;
+    result.stats.passes += traversal_.trace(rays_, active, [this] { return retireFinished(); });
+
+    if (bounce == 1 && captureHits) {
+      glFinish();
+      const auto pause = Clock::now();
+      result.primaryHits.reserve(elements);
+      for (const glm::vec4& h : rays_.read(kHitSurface))
+        result.primaryHits.push_back(h.x < kInfinity ? HitRecord{h.x, h.y, h.z, unpackIndex(h.w)}
+                                                     : HitRecord{kInfinity, 0.0f, 0.0f, kNoHit});
+      excluded += Clock::now() - pause;
+    }
+
+    rays_.clearDepth(1.0f);
+    rays_.setWriteSurfaces(kAllSurfaces);
+    shade_.set("uLastBounce", bounce == bounces ? 1 : 0);
+    shade_.execute();
+  }
+  glFinish();
+  result.stats.frameMs = std::chrono::duration<double, std::milli>(Clock::now() - start - excluded).count();
+
+  const std::vector<glm::vec4> color = rays_.read(kColorSurface);
+  result.rgb.reserve(3 * elements);
+  for (const glm::vec4& c : color) result.rgb.insert(result.rgb.end(), {c.r, c.g, c.b});
+  for (const glm::vec4& t : rays_.read(kThroughputSurface)) result.stats.steps += uint64_t(t.w);
+  for (const glm::vec4& p : rays_.read(kPendingSurface)) result.stats.triangleTests += uint64_t(p.w);
+  rays_.disable();
+  return result;
+}
+
+}  // namespace passtrace

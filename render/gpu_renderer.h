@@ -1,0 +1,38 @@
+#pragma once
+// The GPU stream renderer (-r 2, thesis figure 8): ray generation, then for
+// each bounce traversal passes until the occlusion count says no ray is
+// active, then one shading pass that writes the next rays.
+
+#include <memory>
+
+#include "render/frame_result.h"
+#include "render/gpu_traversal.h"
+#include "stream/const_input_stream.h"
+#include "stream/inout_stream.h"
+#include "stream/stream_kernel.h"
+
+namespace passtrace {
+
+class GpuRenderer {
+ public:
+  // `scene` and `traversal` must outlive the renderer.
+  GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width, int height);
+
+  // Renders one frame with `bounces` traces (1 = primary rays only). Timing
+  // covers ray generation through the last shading pass, ended by glFinish;
+  // reading back primary hits (captureHits) is excluded from it.
+  FrameResult render(const CameraSpec& camera, int bounces, bool captureHits);
+
+  InOutStream& rays() { return rays_; }
+
+ private:
+  uint64_t retireFinished();
+
+  const Scene& scene_;
+  GpuTraversal& traversal_;
+  InOutStream rays_;
+  ConstInputStream triangles_, materials_;
+  StreamKernel raygen_, cull_, shade_;
+};
+
+}  // namespace passtrace

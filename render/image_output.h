@@ -1,0 +1,36 @@
+#pragma once
+// Writing rendered images and hit buffers with OpenImageIO. Files appear
+// atomically: a failed write leaves nothing under the final name. Every
+// failure throws std::runtime_error("PATH: reason").
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+namespace passtrace {
+
+// Throws unless OpenImageIO can write the format the extension names, so a
+// tool can refuse a bad output name before it renders.
+void checkImageFormat(const std::filesystem::path& path);
+
+// rgb holds width*height*3 linear floats, row-major, row 0 the top of the
+// image. The format follows the extension. Float formats (.exr, .hdr)
+// get the values as they are; all others get them clamped to [0,1] and
+// quantised to 8 bits with no gamma, so pixel values stay predictable.
+void writeImage(const std::filesystem::path& path, int width, int height, const std::vector<float>& rgb);
+
+// One pixel of a hit buffer; a miss is id 0xFFFFFFFF (kNoHit) with t = +inf.
+struct HitRecord {
+  float t, u, v;
+  uint32_t id;
+};
+static_assert(sizeof(HitRecord) == 16, "HitRecord is written as OpenEXR's native pixel layout");
+
+// OpenEXR only (anything else is refused): float32 channels "t", "u", "v" and
+// a uint32 channel "id", so ids stay exact.
+void writeHitBuffer(const std::filesystem::path& path, int width, int height, const std::vector<HitRecord>& hits);
+
+// Reads a hit buffer back by channel name; "id" must be stored as uint32.
+std::vector<HitRecord> readHitBuffer(const std::filesystem::path& path, int& width, int& height);
+
+}  // namespace passtrace

@@ -1,0 +1,19 @@
+#pragma once
+// The scene data the shading kernel reads, laid out as texels
+// (kernels_glsl/shade.frag): per triangle in scene order 4 texels
+//   (n0, packed material id) (n1, 0) (n2, 0) (unit geometric normal, 0)
+// with the geometric normal standing in for absent vertex normals; per
+// material 2 texels (diffuse, 0) (mirror reflectance, 0).
+
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scenes/scene.h"
+
+namespace passtrace {
+
+std::vector<glm::vec4> triangleShadingTexels(const Scene& scene);
+std::vector<glm::vec4> materialTexels(const Scene& scene);
+
+}  // namespace passtrace

@@ -1,0 +1,53 @@
+#pragma once
+// The scene every renderer and accelerator consumes: a flat triangle soup in
+// scene order (a triangle's index is its id in hit records), optional vertex
+// normals, one material per triangle, one point light and a default view.
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "accel/geometry.h"
+
+namespace passtrace {
+
+// A material is either diffuse or a perfect mirror (thesis 4.2: no refraction).
+struct Material {
+  glm::vec3 diffuse{0.8f};  // C in (N.L)C
+  glm::vec3 mirror{0.0f};   // reflectance; non-zero makes the material a mirror
+  bool isMirror() const { return mirror.r > 0.0f || mirror.g > 0.0f || mirror.b > 0.0f; }
+};
+
+struct PointLight {
+  glm::vec3 position{0.0f};
+  glm::vec3 color{1.0f};
+};
+
+// The camera of the interface contract: vertical field of view in degrees.
+struct CameraSpec {
+  glm::vec3 eye{0.0f, 0.0f, 3.0f};
+  glm::vec3 lookAt{0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float fovDegrees = 45.0f;
+};
+
+struct Scene {
+  std::string name;
+  std::vector<Triangle> triangles;  // scene order: the index is the hit id
+  // Either empty (shade with the geometric normal) or one entry per triangle.
+  std::vector<std::array<glm::vec3, 3>> vertexNormals;
+  std::vector<uint32_t> materialIds;  // one per triangle, indexes materials
+  std::vector<Material> materials;    // at least one
+  PointLight light;
+  glm::vec3 background{0.0f};
+  float ambient = 0.1f;  // fraction of C added regardless of the light
+  CameraSpec camera;     // the scene's default view
+
+  Aabb bounds() const;
+  bool hasVertexNormals() const { return !vertexNormals.empty(); }
+};
+
+}  // namespace passtrace

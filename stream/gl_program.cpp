@@ -1,0 +1,69 @@
+#include "stream/gl_program.h"
+
+#include "stream/gl_error.h"
+#include "stream/glsl_sources.h"
+
+namespace passtrace {
+namespace {
+
+std::string infoLog(GLuint object, bool isProgram) {
+  GLint length = 0;
+  isProgram ? glGetProgramiv(object, GL_INFO_LOG_LENGTH, &length) : glGetShaderiv(object, GL_INFO_LOG_LENGTH, &length);
+  std::string log(std::max(length, 1), '\0');
+  isProgram ? glGetProgramInfoLog(object, length, nullptr, log.data())
+            : glGetShaderInfoLog(object, length, nullptr, log.data());
+  log.resize(std::min(log.size(), log.find('\0')));
+  while (!log.empty() && (log.back() == '\n' || log.back() == ' ')) log.pop_back();
+  return log;
+}
+
+GLuint compile(GLenum type, const std::string& kernel, const std::string& file,
+               const std::vector<std::string>& defines) {
+  AssembledGlsl glsl;
+  try {
+    glsl = assembleGlsl(file, defines);
+  } catch (const std::exception& e) {
+    throw GlError("kernel " + kernel + " (" + file + "): " + e.what());
+  }
+  const GLuint shader = glCreateShader(type);
+  const char* text = glsl.source.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint ok = GL_FALSE;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (ok) return shader;
+  const std::string log = glsl.translateLog(infoLog(shader, false));
+  glDeleteShader(shader);
+  throw GlError("kernel " + kernel + " (" + file + "): compile failed: " + log);
+}
+
+}  // namespace
+
+GLuint linkProgram(const std::string& name, const std::string& vertexFile, const std::string& fragmentFile,
+                   const std::vector<std::string>& defines) {
+  const GLuint vs = compile(GL_VERTEX_SHADER, name, vertexFile, defines);
+  GLuint fs = 0;
+  try {
+    fs = compile(GL_FRAGMENT_SHADER, name, fragmentFile, defines);
+  } catch (...) {
+    glDeleteShader(vs);
+    throw;
+  }
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, vs);
+  glAttachShader(program, fs);
+  glLinkProgram(program);
+  glDeleteShader(vs);
+  glDeleteShader(fs);
+  GLint ok = GL_FALSE;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    const std::string log = infoLog(program, true);
+    glDeleteProgram(program);
+    throw GlError("kernel " + name + " (" + fragmentFile + "): link failed: " + log);
+  }
+  checkGlError("linking kernel " + name);
+  return program;
+}
+
+}  // namespace passtrace

@@ -1,0 +1,17 @@
+#pragma once
+// Compiling and linking a vertex + fragment program from kernels_glsl/ files,
+// with failures reported by kernel name, GLSL file and line.
+
+#include <string>
+#include <vector>
+
+#include "stream/gl.h"
+
+namespace passtrace {
+
+// Returns the linked program. Throws GlError("kernel NAME (FILE): compile
+// failed: FILE:LINE ...") with the driver's log translated to file lines.
+GLuint linkProgram(const std::string& name, const std::string& vertexFile, const std::string& fragmentFile,
+                   const std::vector<std::string>& defines = {});
+
+}  // namespace passtrace

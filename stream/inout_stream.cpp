@@ -1,0 +1,96 @@
+#include "stream/inout_stream.h"
+
+#include <algorithm>
+#include <string>
+
+#include "stream/gl_error.h"
+
+namespace passtrace {
+
+InOutStream::InOutStream(int width, int height, int surfaceCount) : width_(width), height_(height) {
+  GLint maxSize = 0, maxDrawBuffers = 0, maxViewport[2] = {0, 0};
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+  glGetIntegerv(GL_MAX_DRAW_BUFFERS, &maxDrawBuffers);
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport);
+  const int limit = std::min({maxSize, maxViewport[0], maxViewport[1]});
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  if (width < 1 || height < 1 || width > limit || height > limit)
+    throw GlError("stream size " + size + " is outside 1.." + std::to_string(limit) + " (the GL limit)");
+  if (surfaceCount < 1 || surfaceCount > kMaxSurfaces || surfaceCount > maxDrawBuffers)
+    throw GlError("a stream has 1.." + std::to_string(std::min(kMaxSurfaces, maxDrawBuffers)) + " surfaces, not " +
+                  std::to_string(surfaceCount));
+
+  glCreateFramebuffers(1, &framebuffer_);
+  surfaces_.resize(surfaceCount);
+  glCreateTextures(GL_TEXTURE_2D, surfaceCount, surfaces_.data());
+  for (int i = 0; i < surfaceCount; ++i) {
+    glTextureStorage2D(surfaces_[i], 1, GL_RGBA32F, width, height);
+    glTextureParameteri(surfaces_[i], GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(surfaces_[i], GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glNamedFramebufferTexture(framebuffer_, GL_COLOR_ATTACHMENT0 + i, surfaces_[i], 0);
+  }
+  glCreateTextures(GL_TEXTURE_2D, 1, &depth_);
+  glTextureStorage2D(depth_, 1, GL_DEPTH_COMPONENT32F, width, height);
+  glNamedFramebufferTexture(framebuffer_, GL_DEPTH_ATTACHMENT, depth_, 0);
+  setWriteSurfaces({0});
+  const GLenum status = glCheckNamedFramebufferStatus(framebuffer_, GL_FRAMEBUFFER);
+  checkGlError("creating a " + size + " stream with " + std::to_string(surfaceCount) + " surfaces");
+  if (status != GL_FRAMEBUFFER_COMPLETE) {
+    char hex[16];
+    std::snprintf(hex, sizeof hex, "0x%04x", status);
+    throw GlError("stream framebuffer " + size + " is incomplete (status " + hex + ")");
+  }
+}
+
+InOutStream::~InOutStream() {
+  glDeleteFramebuffers(1, &framebuffer_);
+  glDeleteTextures(static_cast<GLsizei>(surfaces_.size()), surfaces_.data());
+  glDeleteTextures(1, &depth_);
+}
+
+void InOutStream::enable() {
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+  glViewport(0, 0, width_, height_);
+}
+
+void InOutStream::disable() { glBindFramebuffer(GL_FRAMEBUFFER, 0); }
+
+void InOutStream::setWriteSurfaces(const std::vector<int>& surfaces) {
+  if (surfaces == writeSurfaces_) return;
+  std::vector<GLenum> buffers;
+  for (int s : surfaces) buffers.push_back(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(s));
+  glNamedFramebufferDrawBuffers(framebuffer_, static_cast<GLsizei>(buffers.size()), buffers.data());
+  writeSurfaces_ = surfaces;
+}
+
+void InOutStream::clearSurface(int surface, const glm::vec4& value) {
+  glClearTexImage(surfaces_.at(surface), 0, GL_RGBA, GL_FLOAT, &value[0]);
+}
+
+void InOutStream::clearDepth(float depth) {
+  glClearTexImage(depth_, 0, GL_DEPTH_COMPONENT, GL_FLOAT, &depth);
+}
+
+void InOutStream::upload(int surface, const std::vector<glm::vec4>& texels) {
+  if (texels.size() != elementCount()) throw GlError("upload: wrong element count for the stream");
+  glTextureSubImage2D(surfaces_.at(surface), 0, 0, 0, width_, height_, GL_RGBA, GL_FLOAT, texels.data());
+  checkGlError("uploading a stream surface");
+}
+
+std::vector<glm::vec4> InOutStream::read(int surface) const {
+  std::vector<glm::vec4> texels(elementCount());
+  glGetTextureImage(surfaces_.at(surface), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(texels.size() * sizeof(glm::vec4)),
+                    texels.data());
+  checkGlError("reading a stream surface");
+  return texels;
+}
+
+std::vector<float> InOutStream::readDepth() const {
+  std::vector<float> depth(elementCount());
+  glGetTextureImage(depth_, 0, GL_DEPTH_COMPONENT, GL_FLOAT, static_cast<GLsizei>(depth.size() * sizeof(float)),
+                    depth.data());
+  checkGlError("reading stream depth");
+  return depth;
+}
+
+}  // namespace passtrace

@@ -1,0 +1,59 @@
+#pragma once
+// InOutStream (thesis 3.5): one framebuffer holding up to 8 RGBA32F surfaces of
+// width x height stream elements and a depth buffer that masks finished
+// elements. Kernels read surfaces as textures and write others; which is
+// which can change from pass to pass without re-creating anything. A kernel
+// may read and write the same surface as long as each fragment reads only its
+// own texel (GL 4.5 texture-barrier rules; StreamKernel issues the barrier).
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "stream/gl.h"
+
+namespace passtrace {
+
+class InOutStream {
+ public:
+  static constexpr int kMaxSurfaces = 8;
+
+  // Throws GlError if the size is zero or beyond the GL limits, or the
+  // framebuffer is incomplete.
+  InOutStream(int width, int height, int surfaceCount);
+  ~InOutStream();
+  InOutStream(const InOutStream&) = delete;
+  InOutStream& operator=(const InOutStream&) = delete;
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int surfaceCount() const { return static_cast<int>(surfaces_.size()); }
+  size_t elementCount() const { return size_t(width_) * size_t(height_); }
+
+  // Binds the framebuffer and viewport: kernels executed until disable() write here.
+  void enable();
+  void disable();
+  // Kernel output location k goes to surfaces[k].
+  void setWriteSurfaces(const std::vector<int>& surfaces);
+
+  GLuint surfaceTexture(int surface) const { return surfaces_.at(surface); }
+
+  void clearSurface(int surface, const glm::vec4& value);
+  // Depth 1 marks an element active, 0 finished (kernels draw at depth 0.5 with GL_LESS).
+  void clearDepth(float depth);
+
+  // Element (x, y) is texel (x, y): row 0 is the first row in memory.
+  void upload(int surface, const std::vector<glm::vec4>& texels);
+  std::vector<glm::vec4> read(int surface) const;
+  std::vector<float> readDepth() const;
+
+ private:
+  int width_, height_;
+  GLuint framebuffer_ = 0;
+  GLuint depth_ = 0;
+  std::vector<GLuint> surfaces_;
+  std::vector<int> writeSurfaces_;
+};
+
+}  // namespace passtrace

@@ -1,0 +1,81 @@
+#include "stream/stream_kernel.h"
+
+#include "stream/const_input_stream.h"
+#include "stream/gl_error.h"
+#include "stream/gl_program.h"
+#include "stream/inout_stream.h"
+
+namespace passtrace {
+
+StreamKernel::StreamKernel(std::string name, const std::string& glslFile, Depth depth,
+                           const std::vector<std::string>& defines)
+    : name_(std::move(name)), depth_(depth) {
+  program_ = linkProgram(name_, "fullscreen_quad.vert", glslFile, defines);
+  glCreateQueries(GL_SAMPLES_PASSED, 1, &query_);
+  glCreateVertexArrays(1, &vertexArray_);  // core profile draws need a VAO, even an empty one
+  checkGlError("creating kernel " + name_);
+}
+
+StreamKernel::~StreamKernel() {
+  glDeleteProgram(program_);
+  glDeleteQueries(1, &query_);
+  glDeleteVertexArrays(1, &vertexArray_);
+}
+
+GLint StreamKernel::location(const char* uniform) {
+  auto it = locations_.find(uniform);
+  if (it == locations_.end()) it = locations_.emplace(uniform, glGetUniformLocation(program_, uniform)).first;
+  return it->second;  // -1 (ignored by GL) when the compiler removed an unused uniform
+}
+
+void StreamKernel::set(const char* u, float v) { glProgramUniform1f(program_, location(u), v); }
+void StreamKernel::set(const char* u, int v) { glProgramUniform1i(program_, location(u), v); }
+void StreamKernel::set(const char* u, uint32_t v) { glProgramUniform1ui(program_, location(u), v); }
+void StreamKernel::set(const char* u, const glm::vec2& v) { glProgramUniform2f(program_, location(u), v.x, v.y); }
+void StreamKernel::set(const char* u, const glm::vec3& v) {
+  glProgramUniform3f(program_, location(u), v.x, v.y, v.z);
+}
+void StreamKernel::set(const char* u, const glm::vec4& v) {
+  glProgramUniform4f(program_, location(u), v.x, v.y, v.z, v.w);
+}
+
+void StreamKernel::bindTexture(const char* sampler, GLuint texture) {
+  auto it = textures_.find(sampler);
+  if (it == textures_.end()) {
+    const GLuint unit = static_cast<GLuint>(textures_.size());
+    it = textures_.emplace(sampler, std::make_pair(unit, texture)).first;
+    glProgramUniform1i(program_, location(sampler), static_cast<GLint>(unit));
+  }
+  it->second.second = texture;
+}
+
+void StreamKernel::bindInput(const char* sampler, const ConstInputStream& stream) {
+  bindTexture(sampler, stream.texture());
+}
+
+void StreamKernel::bindInput(const char* sampler, const InOutStream& stream, int surface) {
+  bindTexture(sampler, stream.surfaceTexture(surface));
+}
+
+uint64_t StreamKernel::execute(bool countFragments) {
+  glUseProgram(program_);
+  for (const auto& [sampler, binding] : textures_) glBindTextureUnit(binding.first, binding.second);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  // The cull kernel only retires elements; it must leave every surface as it is.
+  const GLboolean colour = depth_ == Depth::Cull ? GL_FALSE : GL_TRUE;
+  glColorMask(colour, colour, colour, colour);
+  glDepthMask(depth_ == Depth::Cull ? GL_TRUE : GL_FALSE);
+  glBindVertexArray(vertexArray_);
+  if (countFragments) glBeginQuery(GL_SAMPLES_PASSED, query_);
+  glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+  if (countFragments) glEndQuery(GL_SAMPLES_PASSED);
+  // Later passes read what this one wrote, possibly from the same surfaces.
+  glTextureBarrier();
+  GLuint64 count = 0;
+  if (countFragments) glGetQueryObjectui64v(query_, GL_QUERY_RESULT, &count);
+  checkGlError("executing kernel " + name_);
+  return count;
+}
+
+}  // namespace passtrace

@@ -1,0 +1,67 @@
+#pragma once
+// StreamKernel (thesis 3.5): a GLSL fragment program from kernels_glsl/, its
+// uniforms and its input streams. execute() draws one full-screen quad into
+// the enabled InOutStream; elements whose depth marks them finished fail the
+// early depth test and never run. With countFragments it returns the
+// occlusion-query count of fragments that passed the depth test and were not
+// discarded.
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "stream/gl.h"
+
+namespace passtrace {
+
+class ConstInputStream;
+class InOutStream;
+
+class StreamKernel {
+ public:
+  enum class Depth {
+    Test,  // compute kernels: run only where the element is active, never write depth
+    Cull   // the cull kernel: writes gl_FragDepth to retire finished elements
+  };
+
+  // Compiles and links `glslFile` (a kernels_glsl/ file) with the shared quad
+  // vertex program. Throws GlError naming the kernel, file, line and the
+  // driver's log on failure.
+  StreamKernel(std::string name, const std::string& glslFile, Depth depth = Depth::Test,
+               const std::vector<std::string>& defines = {});
+  ~StreamKernel();
+  StreamKernel(const StreamKernel&) = delete;
+  StreamKernel& operator=(const StreamKernel&) = delete;
+
+  const std::string& name() const { return name_; }
+
+  void set(const char* uniform, float v);
+  void set(const char* uniform, int v);
+  void set(const char* uniform, uint32_t v);
+  void set(const char* uniform, const glm::vec2& v);
+  void set(const char* uniform, const glm::vec3& v);
+  void set(const char* uniform, const glm::vec4& v);
+
+  // Binds a sampler2D uniform to constant data or to one surface of a stream.
+  void bindInput(const char* sampler, const ConstInputStream& stream);
+  void bindInput(const char* sampler, const InOutStream& stream, int surface);
+
+  uint64_t execute(bool countFragments = false);
+
+ private:
+  GLint location(const char* uniform);
+  void bindTexture(const char* sampler, GLuint texture);
+
+  std::string name_;
+  Depth depth_;
+  GLuint program_ = 0;
+  GLuint query_ = 0;
+  GLuint vertexArray_ = 0;
+  std::map<std::string, GLint> locations_;
+  std::map<std::string, std::pair<GLuint, GLuint>> textures_;  // sampler -> (unit, texture)
+};
+
+}  // namespace passtrace

@@ -1,0 +1,202 @@
+// The passtrace command line end to end: outputs, the JSON contract, hit
+// buffers against brute force, and one clear error for every bad input.
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "accel/brute_force.h"
+#include "render/camera.h"
+#include "render/image_output.h"
+#include "scenes/scene_registry.h"
+
+namespace fs = std::filesystem;
+
+namespace passtrace {
+namespace {
+
+struct RunResult {
+  int status;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("passtrace_cli_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  RunResult run(const std::string& args, const std::string& env = "") {
+    const std::string cmd = env + " " + PASSTRACE_BINARY + " " + args + " > " + (dir_ / "stdout").string() + " 2> " +
+                            (dir_ / "stderr").string() + " < /dev/null";
+    const int raw = std::system(cmd.c_str());
+    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(dir_ / "stdout"), slurp(dir_ / "stderr")};
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  // Files in the directory other than the captured streams.
+  std::vector<std::string> outputs() const {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir_))
+      if (e.path().filename() != "stdout" && e.path().filename() != "stderr" && e.path().filename() != "bad.obj")
+        names.push_back(e.path().filename().string());
+    return names;
+  }
+  void expectOneLineError(const RunResult& r, const std::string& mention) {
+    EXPECT_NE(r.status, 0);
+    EXPECT_EQ(r.err.rfind("passtrace: error: ", 0), 0u) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(mention), std::string::npos) << "expected '" << mention << "' in: " << r.err;
+    EXPECT_TRUE(outputs().empty()) << "an output was left behind: " << outputs().front();
+  }
+  fs::path dir_;
+};
+
+TEST_F(Cli, HelpExplainsEveryThesisFlag) {
+  const RunResult r = run("--help");
+  EXPECT_EQ(r.status, 0);
+  for (const char* flag : {"-r,", "-a,", "-s,", "-w,", "-b,", "-p,", "-t,", "-g,", "-e,", "-d,", "-m,", "-n,", "-l,",
+                           "-c,", "--eye", "--look-at", "--up", "--fov", "--hits", "--json", "--gl-backend", "--width",
+                           "--height", "-o,"})
+    EXPECT_NE(r.out.find(flag), std::string::npos) << flag;
+}
+
+void expectJsonContract(const nlohmann::json& j, const std::string& renderer) {
+  for (const char* key : {"scene", "triangles", "renderer", "accelerator", "width", "height", "bounces", "rays",
+                          "build_ms", "frame_ms", "mrays_per_s", "passes", "accel_floats_per_triangle", "gl_renderer"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["renderer"], renderer);
+  EXPECT_EQ(j["scene"], "cornell");
+  EXPECT_EQ(j["triangles"], 32);
+  EXPECT_EQ(j["width"], 40);
+  EXPECT_EQ(j["height"], 30);
+  EXPECT_EQ(j["bounces"], 2);
+  // Every primary ray hits the closed box; diffuse hits facing the light add shadow rays.
+  EXPECT_GT(j["rays"].get<double>(), 1200.0);
+  EXPECT_LE(j["rays"].get<double>(), 2400.0);
+  EXPECT_GT(j["frame_ms"].get<double>(), 0.0);
+  EXPECT_NEAR(j["mrays_per_s"].get<double>(), j["rays"].get<double>() / j["frame_ms"].get<double>() / 1000.0, 1e-9);
+  EXPECT_NEAR(j["accel_floats_per_triangle"].get<double>(), 8.0 * 31 / 32, 1e-6);
+}
+
+TEST_F(Cli, GpuRendererWritesImageAndJson) {
+  const RunResult r = run("-s cornell -r 2 --width 40 --height 30 -b 2 -m 2 -o " + path("c.png") + " --json " +
+                          path("c.json"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("Mrays/s"), std::string::npos);
+  const auto j = nlohmann::json::parse(slurp(path("c.json")));
+  expectJsonContract(j, "gpu");
+  EXPECT_TRUE(j["gl_renderer"].is_string());
+  EXPECT_GE(j["passes"].get<double>(), 2.0);
+  EXPECT_TRUE(fs::exists(path("c.png")));
+}
+
+TEST_F(Cli, CpuRendererWritesImageAndJson) {
+  const RunResult r = run("-s cornell -r 1 --width 40 --height 30 -b 2 -o " + path("c.exr") + " --json " +
+                          path("c.json"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  expectJsonContract(nlohmann::json::parse(slurp(path("c.json"))), "cpu");
+  EXPECT_TRUE(fs::exists(path("c.exr")));
+}
+
+TEST_F(Cli, PreviewRendererWritesImage) {
+  const RunResult r = run("-s cornell -r 0 -w 32 -o " + path("p.png"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(path("p.png")));
+}
+
+TEST_F(Cli, DumpImagesWritesOneImagePerAngle) {
+  const RunResult r = run("-s cornell -r 1 -w 16 -n 3 -p -o " + path("a.png"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* name : {"a.png", "a_0.png", "a_1.png", "a_2.png"}) EXPECT_TRUE(fs::exists(path(name))) << name;
+}
+
+// The hit buffers of both ray tracers against brute force on the contract's rays.
+void expectHitsMatchBruteForce(const std::string& file, const Scene& scene, int size) {
+  int w = 0, h = 0;
+  const std::vector<HitRecord> hits = readHitBuffer(file, w, h);
+  ASSERT_EQ(w, size);
+  ASSERT_EQ(h, size);
+  const CameraBasis basis = makeCameraBasis(scene.camera, w, h);
+  int found = 0, mismatches = 0;
+  for (int py = 0; py < h; ++py)
+    for (int px = 0; px < w; ++px) {
+      const HitRecord& got = hits[size_t(py) * w + px];
+      const Hit expected = intersectBruteForce(scene.triangles, primaryRay(basis, px, py), false);
+      found += expected.found();
+      if (got.id == expected.id) {
+        if (expected.found()) EXPECT_NEAR(got.t, expected.t, 1e-5f * expected.t);
+        else EXPECT_EQ(got.t, kInfinity);
+        continue;
+      }
+      // Two triangles met at the same t (a shared edge or vertex).
+      const bool tie = expected.found() && got.id != kNoHit && std::abs(got.t - expected.t) <= 1e-5f * expected.t;
+      if (!tie) ++mismatches;
+    }
+  EXPECT_EQ(mismatches, 0);
+  EXPECT_GT(found, size * size / 10);
+}
+
+TEST_F(Cli, HitBuffersOfBothRaytracersEqualBruteForce) {
+  const Scene bunny = loadScene("bunny");
+  for (int renderer : {1, 2}) {
+    const std::string file = path("h" + std::to_string(renderer) + ".exr");
+    const RunResult r = run("-s bunny -b 1 -w 48 -r " + std::to_string(renderer) + " --hits " + file);
+    ASSERT_EQ(r.status, 0) << r.err;
+    SCOPED_TRACE("-r " + std::to_string(renderer));
+    expectHitsMatchBruteForce(file, bunny, 48);
+  }
+}
+
+TEST_F(Cli, BadInputsGiveOneLineErrorsAndNoOutput) {
+  std::ofstream(path("bad.obj")) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n";
+  const std::string outs = " -o " + path("x.png") + " --json " + path("x.json");
+  expectOneLineError(run("-s " + path("missing.obj") + outs), "missing.obj");
+  expectOneLineError(run("-s nosuchscene" + outs), "nosuchscene");
+  expectOneLineError(run("-s " + path("bad.obj") + outs), "bad.obj:4");
+  expectOneLineError(run("-s cornell -w abc" + outs), "abc");
+  expectOneLineError(run("-s cornell -w 0" + outs), "--resolution");
+  expectOneLineError(run("-s cornell -r 1 --width 20000 --height 20000" + outs), "too large");
+  expectOneLineError(run("-s cornell -r 2 -w 20000" + outs), "GL limit");
+  expectOneLineError(run("-s cornell -r 2 -w 100000" + outs), "--resolution");
+  expectOneLineError(run("-s cornell -a 9" + outs), "9");
+  expectOneLineError(run("-s cornell -a nosuchaccel" + outs), "nosuchaccel");
+  expectOneLineError(run("-s cornell -r 2 -a 4" + outs), "accelerator 4");
+  expectOneLineError(run("-s cornell -r 7" + outs), "-r");
+  expectOneLineError(run("-s cornell --eye 1,2" + outs), "--eye");
+  expectOneLineError(run("-s cornell --eye 1,2,nan" + outs), "--eye");
+  expectOneLineError(run("-s cornell --eye 278,273,0 --look-at 278,273,0" + outs), "coincide");
+  expectOneLineError(run("-s cornell --up 0,0,1 --eye 0,0,0 --look-at 0,0,5" + outs), "parallel");
+  expectOneLineError(run("-s cornell --gl-backend vulkan" + outs), "vulkan");
+  expectOneLineError(run("-s cornell -o " + path("no/such/dir/x.png")), "does not exist");
+  expectOneLineError(run("-s cornell -o " + path("x.unknownformat")), "x.unknownformat");
+  expectOneLineError(run("-s cornell --hits " + path("h.png")), ".exr");
+  expectOneLineError(run("-s cornell --unknown-flag" + outs), "unknown-flag");
+}
+
+TEST_F(Cli, NoGlContextIsAnErrorAndAutoFallsBackToOsMesa) {
+  // Pointing glvnd at no vendor library leaves EGL without a driver.
+  const std::string noEgl = "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json";
+  expectOneLineError(run("-s cornell -w 16 --gl-backend egl -o " + path("x.png"), noEgl), "no OpenGL 4.5 context");
+  const RunResult r = run("-s cornell -w 16 --gl-backend auto --json " + path("j.json"), noEgl);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("falling back to OSMesa"), std::string::npos) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(slurp(path("j.json")))["gl_backend"], "osmesa");
+}
+
+}  // namespace
+}  // namespace passtrace
