@@ -8,6 +8,8 @@
 #include "accel/bvh.h"
 #include "accel/bvh_traversal.h"
 #include "accel/escape_sequence.h"
+#include "accel/grid_accelerators.h"
+#include "accel/kd_accelerator.h"
 
 namespace passtrace {
 namespace {
@@ -20,13 +22,13 @@ struct AcceleratorInfo {
 
 constexpr std::array<AcceleratorInfo, 8> kAccelerators{{
     {"kk-bvh", "K/K BVH, sequential", true},
-    {"gs-bvh", "G/S BVH, sequential", false},
-    {"kd-tree", "Kd-tree", false},
-    {"kd-pbrt", "Kd-tree (pbrt)", false},
-    {"grid", "Uniform grid", false},
+    {"gs-bvh", "G/S BVH, sequential", true},
+    {"kd-tree", "Kd-tree", true},
+    {"kd-pbrt", "Kd-tree (pbrt)", true},
+    {"grid", "Uniform grid", true},
     {"kk-bvh-recursive", "K/K BVH, recursive", true},
-    {"gs-bvh-recursive", "G/S BVH, recursive", false},
-    {"octree", "Octree", false},
+    {"gs-bvh-recursive", "G/S BVH, recursive", true},
+    {"octree", "Octree", true},
 }};
 
 const AcceleratorInfo& info(int number) {
@@ -128,6 +130,9 @@ std::unique_ptr<CpuAccelerator> makeCpuAccelerator(int number, std::span<const T
     throw std::invalid_argument("accelerator " + std::to_string(number) + " (" + accel.thesisName +
                                 ") is not implemented yet");
   if (number == 0) return std::make_unique<SequentialKayKajiya>(tris, config);
+  if (number == 1 || number == 4 || number == 6 || number == 7)
+    return makeGridFamilyCpuAccelerator(number, tris, config);
+  if (number == 2 || number == 3) return makeKdCpuAccelerator(number, tris, config);
   return std::make_unique<RecursiveKayKajiya>(tris, config);  // 5, the only other one implemented
 }
 

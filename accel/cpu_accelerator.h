@@ -36,9 +36,14 @@ struct AccelStats {
   uint32_t depth = 0;             // levels; a single leaf is 1
 };
 
+// Construction parameters of every structure (tracy's -c -t -g -e -d).
 struct AccelBuildConfig {
-  KayKajiyaConfig kayKajiya;
-  // later: Goldsmith/Salmon tries, grid resolution factor, kd-tree limits
+  KayKajiyaConfig kayKajiya;  // -c
+  int gsTries = 10;           // -t: Goldsmith/Salmon constructions; the cheapest is kept
+  uint64_t gsSeed = 0x65;     // shuffles the insertion order of each G/S try
+  float gridMultiplier = 1.0f;  // -g: scales the uniform grid's resolution
+  int kdMinElements = 2;      // -e: fewest triangles for a kd-tree internal node
+  int kdMaxDepth = 0;         // -d: kd-tree maximum depth; 0 = 8 + 1.3 log2 N
 };
 
 // The K/K tree flattened to its escape-index sequence, and its statistics

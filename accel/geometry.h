@@ -83,7 +83,9 @@ inline glm::vec3 safeInverse(const glm::vec3& d) {
 // exactly on the max face would give the interval [-huge, 0] and miss.
 inline constexpr float kParallelInverse = 1e19f;
 
-inline bool intersectsBox(const glm::vec3& origin, const glm::vec3& invDir, const Aabb& box, float tBest) {
+// The interval [tNear, tFar] where the ray's line is inside the box; false
+// when it is empty. kernels_glsl/clip_box.glsl computes the same.
+inline bool clipToBox(const glm::vec3& origin, const glm::vec3& invDir, const Aabb& box, float& tNear, float& tFar) {
   const glm::vec3 t0 = (box.min - origin) * invDir;
   const glm::vec3 t1 = (box.max - origin) * invDir;
   glm::vec3 tSmall = glm::min(t0, t1);
@@ -95,9 +97,14 @@ inline bool intersectsBox(const glm::vec3& origin, const glm::vec3& invDir, cons
       tLarge[k] = inside ? kInfinity : -kInfinity;
     }
   }
-  const float tNear = std::max(std::max(tSmall.x, tSmall.y), tSmall.z);
-  const float tFar = std::min(std::min(tLarge.x, tLarge.y), tLarge.z);
-  return tNear <= tFar && tFar >= 0.0f && tNear < tBest;
+  tNear = std::max(std::max(tSmall.x, tSmall.y), tSmall.z);
+  tFar = std::min(std::min(tLarge.x, tLarge.y), tLarge.z);
+  return tNear <= tFar;
+}
+
+inline bool intersectsBox(const glm::vec3& origin, const glm::vec3& invDir, const Aabb& box, float tBest) {
+  float tNear, tFar;
+  return clipToBox(origin, invDir, box, tNear, tFar) && tFar >= 0.0f && tNear < tBest;
 }
 
 // Möller–Trumbore, two-sided. Updates `best` and returns true when the

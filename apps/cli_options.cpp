@@ -35,8 +35,10 @@ int parseOptions(int argc, char** argv, Options& o) {
   app.add_option("-r,--renderer", o.renderer, "0 OpenGL rasterized preview, 1 CPU ray tracer, 2 GPU stream ray tracer")
       ->check(CLI::Range(0, 2))->capture_default_str();
   app.add_option("-a,--accel", o.accelerator,
-                 "accelerator, number or name: 0 kk-bvh, 1 gs-bvh, 2 kd-tree (GPU: kd-restart), 3 kd-pbrt "
-                 "(GPU: kd-backtrack), 4 grid, 5 kk-bvh-recursive, 6 gs-bvh-recursive, 7 octree")
+                 "accelerator, number or name (thesis Table 4). GPU: 0 kk-bvh, 1 gs-bvh, 2 kd-restart, "
+                 "3 kd-backtrack, 4 grid. CPU: 0 kk-bvh, 1 gs-bvh, 2 kd-tree, 3 kd-pbrt, 4 grid, "
+                 "5 kk-bvh-recursive, 6 gs-bvh-recursive, 7 octree, and the GPU kernels' own algorithms "
+                 "kd-restart, kd-backtrack, grid-stream")
       ->capture_default_str();
   app.add_option("-s,--scene", o.scene, "scene: cornell, bunny, or an .obj file")->capture_default_str();
   app.add_option("-w,--resolution", size, "render N x N pixels (default 512)")->check(CLI::Range(1, kMaxImageSide));
@@ -73,6 +75,11 @@ int parseOptions(int argc, char** argv, Options& o) {
   app.add_option("--json", o.json, "write the run's measurements as JSON");
   app.add_option("--gl-backend", o.glBackend, "auto, egl or osmesa")
       ->check(CLI::IsMember({"auto", "egl", "osmesa"}))->capture_default_str();
+  app.add_option("--grid-kernels", o.gridKernels,
+                 "GPU uniform grid: merged traversal+intersection kernel, or Purcell's split kernels")
+      ->check(CLI::IsMember({"merged", "split"}))->capture_default_str();
+  app.add_option("--heatmap", o.heatmap, "write per-pixel traversal steps (all bounces) as a heat map image");
+  app.add_flag("--stats", o.stats, "print the structure's memory and the per-ray step statistics");
   app.add_flag("-q,--quiet", o.quiet, "print nothing but errors");
 
   try {

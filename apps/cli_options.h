@@ -37,6 +37,9 @@ struct Options {
   std::string hits;                 // --hits (OpenEXR)
   std::string json;                 // --json
   std::string glBackend = "auto";   // --gl-backend
+  std::string gridKernels = "merged";  // --grid-kernels: merged or split (Purcell)
+  std::string heatmap;              // --heatmap: per-pixel traversal steps as an image
+  bool stats = false;               // --stats: print structure and per-ray statistics
   bool quiet = false;
 };
 

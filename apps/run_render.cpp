@@ -7,11 +7,13 @@
 #include <nlohmann/json.hpp>
 
 #include "accel/cpu_accelerator.h"
+#include "accel/stream_mirror_accelerators.h"
 #include "render/atomic_file.h"
 #include "render/camera.h"
 #include "render/camera_path.h"
 #include "render/cpu_renderer.h"
 #include "render/gpu_renderer.h"
+#include "render/heatmap.h"
 #include "render/image_output.h"
 #include "render/preview_renderer.h"
 #include "scenes/scene_registry.h"
@@ -58,15 +60,30 @@ void checkOutputs(const Options& o) {
     if (fs::path(o.hits).extension() != ".exr") throw std::runtime_error(o.hits + ": hit buffers are OpenEXR (.exr) files");
   }
   if (!o.json.empty()) checkWritable(o.json);
+  if (!o.heatmap.empty()) {
+    checkWritable(o.heatmap);
+    checkImageFormat(o.heatmap);
+  }
 }
 
 // Renders one view with whichever renderer was chosen.
 using RenderFn = std::function<FrameResult(const CameraSpec&, bool captureHits)>;
 
+// The CPU accelerator named by -a: a Table 4 number or name, or one of the
+// GPU kernels' algorithms run on the CPU.
+std::unique_ptr<CpuAccelerator> makeCpuAcceleratorFor(const std::string& name, const Scene& scene,
+                                                      const AccelBuildConfig& build) {
+  if (const auto mirror = streamMirrorByName(name)) return makeStreamMirrorAccelerator(*mirror, scene.triangles, build);
+  return makeCpuAccelerator(acceleratorNumber(name), scene.triangles, build);
+}
+
 }  // namespace
 
 void runPassTrace(const Options& o) {
-  const int accelerator = acceleratorNumber(o.accelerator);
+  // Reject an unknown accelerator name before loading anything.
+  const int accelerator = o.renderer == 2 ? gpuAcceleratorNumber(o.accelerator)
+                          : streamMirrorByName(o.accelerator) ? -1
+                                                              : acceleratorNumber(o.accelerator);
   if (o.renderer == 1 && (long long)o.width * o.height > kMaxCpuPixels)
     throw std::runtime_error("image " + std::to_string(o.width) + "x" + std::to_string(o.height) +
                              " is too large for the CPU renderer (at most 16384x16384 pixels)");
@@ -78,6 +95,10 @@ void runPassTrace(const Options& o) {
 
   AccelBuildConfig build;
   build.kayKajiya.swapProbability = 0.5f * float(o.swapChildren);
+  build.gsTries = o.gsTries;
+  build.gridMultiplier = o.gridMultiplier;
+  build.kdMinElements = o.kdMinElements;
+  build.kdMaxDepth = o.kdMaxDepth;
 
   std::unique_ptr<GlContext> gl;
   if (o.renderer != 1) {
@@ -93,19 +114,21 @@ void runPassTrace(const Options& o) {
   AccelStats accelStats;
   RenderFn render;
   if (o.renderer == 2) {
-    gpuTraversal = makeGpuTraversal(accelerator, scene, GpuTraversalConfig{build, o.loopLimit});
+    const GridKernels gridKernels = o.gridKernels == "split" ? GridKernels::Split : GridKernels::Merged;
+    gpuTraversal = makeGpuTraversal(accelerator, scene, GpuTraversalConfig{build, o.loopLimit, gridKernels});
     gpuRenderer = std::make_unique<GpuRenderer>(scene, *gpuTraversal, o.width, o.height);
     accelStats = gpuTraversal->stats();
     render = [&](const CameraSpec& v, bool hits) { return gpuRenderer->render(v, o.bounces, hits); };
     // One untimed frame first: llvmpipe compiles each kernel on its first draw.
     render(views.front(), false);
   } else if (o.renderer == 1) {
-    cpuAccelerator = makeCpuAccelerator(accelerator, scene.triangles, build);
+    cpuAccelerator = makeCpuAcceleratorFor(o.accelerator, scene, build);
     cpuRenderer = std::make_unique<CpuRenderer>(scene, *cpuAccelerator, o.threads);
     accelStats = cpuAccelerator->stats();
     render = [&](const CameraSpec& v, bool hits) { return cpuRenderer->render(v, o.width, o.height, o.bounces, hits); };
   } else {
-    if (!o.hits.empty()) throw std::runtime_error("--hits needs a ray tracer (-r 1 or -r 2)");
+    if (!o.hits.empty() || !o.heatmap.empty())
+      throw std::runtime_error("--hits and --heatmap need a ray tracer (-r 1 or -r 2)");
     accelStats.name = "none";
     render = [&](const CameraSpec& v, bool) { return renderPreview(scene, v, o.width, o.height); };
   }
@@ -135,6 +158,7 @@ void runPassTrace(const Options& o) {
     total.triangleTests += best.stats.triangleTests;
     if (k == 0) {
       first.width = best.width, first.height = best.height, first.rgb = best.rgb, first.stats = best.stats;
+      first.steps = best.steps;
     }
     if (o.dumpImages && !o.output.empty()) writeImage(numberedPath(o.output, int(k)), best.width, best.height, best.rgb);
   }
@@ -145,6 +169,7 @@ void runPassTrace(const Options& o) {
   const double mraysPerS = frameMs > 0 ? rays / frameMs / 1000.0 : 0.0;
   if (!o.output.empty()) writeImage(o.output, first.width, first.height, first.rgb);
   if (!o.hits.empty()) writeHitBuffer(o.hits, first.width, first.height, first.primaryHits);
+  if (!o.heatmap.empty()) writeImage(o.heatmap, first.width, first.height, heatmapRgb(first.steps));
   if (!o.json.empty()) {
     nlohmann::json j = {
         {"scene", scene.name},
@@ -152,7 +177,7 @@ void runPassTrace(const Options& o) {
         {"renderer", kRendererNames[o.renderer]},
         {"renderer_id", o.renderer},
         {"accelerator", accelStats.name},
-        {"accelerator_id", o.renderer == 0 ? nlohmann::json(nullptr) : nlohmann::json(accelerator)},
+        {"accelerator_id", o.renderer == 0 || accelerator < 0 ? nlohmann::json(nullptr) : nlohmann::json(accelerator)},
         {"width", o.width},
         {"height", o.height},
         {"bounces", o.bounces},
@@ -169,11 +194,21 @@ void runPassTrace(const Options& o) {
         {"accel_nodes", accelStats.nodes},
         {"accel_leaves", accelStats.leaves},
         {"accel_depth", accelStats.depth},
+        {"accel_references", accelStats.references},
+        {"steps", double(total.steps) / n},
+        {"triangle_tests", double(total.triangleTests) / n},
         {"gl_renderer", gl ? nlohmann::json(gl->renderer()) : nlohmann::json(nullptr)},
         {"gl_backend", gl ? nlohmann::json(gl->backend()) : nlohmann::json(nullptr)},
         {"frames", frames},
     };
     writeTextFile(o.json, j.dump(2) + "\n");
+  }
+  if (o.stats && !o.quiet) {
+    std::printf("structure: %s, %zu nodes, %zu leaves, %zu triangle references, depth %u, %.2f floats/triangle\n",
+                accelStats.name.c_str(), accelStats.nodes, accelStats.leaves, accelStats.references, accelStats.depth,
+                accelStats.floatsPerTriangle);
+    std::printf("per ray: %.2f traversal steps, %.2f triangle tests\n", sumRays > 0 ? double(total.steps) / sumRays : 0.0,
+                sumRays > 0 ? double(total.triangleTests) / sumRays : 0.0);
   }
   if (!o.quiet) {
     std::printf("%s: %zu triangles; %s renderer, %s (build %.1f ms, %.2f floats/triangle)%s%s\n", scene.name.c_str(),

@@ -14,6 +14,11 @@ vec4 fetchTexel(sampler2D data, uint widthLog2, uint index) {
   return texelFetch(data, texelOf(index, widthLog2), 0);
 }
 
+// One float of a scalar array stored four to a texel (reference lists, grid cells).
+float fetchScalar(sampler2D data, uint widthLog2, uint index) {
+  return fetchTexel(data, widthLog2, index >> 2u)[index & 3u];
+}
+
 // Raw bits offset by 2^23: never denormal, exact beyond 2^24.
 float packIndex(uint index) { return uintBitsToFloat(index + 0x00800000u); }
 uint unpackIndex(float bits) { return floatBitsToUint(bits) - 0x00800000u; }

@@ -66,7 +66,9 @@ FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height,
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start - excluded).count();
 
   result.rgb.reserve(3 * elements);
+  result.steps.reserve(elements);
   for (const PathState& p : paths) {
+    result.steps.push_back(float(p.steps));
     result.rgb.insert(result.rgb.end(), {p.color.r, p.color.g, p.color.b});
     result.stats.steps += p.steps;
     result.stats.triangleTests += p.triangleTests;

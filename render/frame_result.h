@@ -21,6 +21,7 @@ struct FrameResult {
   int width = 0, height = 0;
   std::vector<float> rgb;                // width*height*3, row 0 the top row
   std::vector<HitRecord> primaryHits;    // filled when asked for
+  std::vector<float> steps;              // per pixel: traversal steps of all its rays
   FrameStats stats;
 };
 

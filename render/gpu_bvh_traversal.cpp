@@ -1,7 +1,6 @@
 #include "render/gpu_bvh_traversal.h"
 
 #include "render/ray_stream_layout.h"
-#include "stream/gl_error.h"
 #include "stream/inout_stream.h"
 
 namespace passtrace {
@@ -17,23 +16,10 @@ GpuBvhTraversal::GpuBvhTraversal(const EscapeSequence& sequence, AccelStats stat
 }
 
 uint64_t GpuBvhTraversal::trace(InOutStream& rays, uint64_t active, const std::function<uint64_t()>& retire) {
-  kernel_.bindInput("uOrigin", rays, kOriginSurface);
-  kernel_.bindInput("uDirection", rays, kDirectionSurface);
-  kernel_.bindInput("uState", rays, kStateSurface);
-  kernel_.bindInput("uHit", rays, kHitSurface);
+  bindRayInputs(kernel_, rays);
   rays.setWriteSurfaces({kStateSurface, kHitSurface});
-  // Every step advances a ray at least 2 texels, so no ray needs more passes
-  // than this; reaching it means a kernel bug, not a slow scene.
-  const uint64_t maxPasses = sequence_.size() / (2 * uint64_t(loopLimit_)) + 2;
-  uint64_t passes = 0;
-  while (active > 0) {
-    if (passes == maxPasses) throw GlError("bvh_traverse: rays still active after " + std::to_string(passes) + " passes");
-    kernel_.execute();
-    ++passes;
-    const uint64_t retired = retire();
-    active -= std::min(retired, active);
-  }
-  return passes;
+  // Every step advances a ray at least 2 texels, so no ray needs more passes.
+  return runTraversalPasses(kernel_, active, sequence_.size() / (2 * uint64_t(loopLimit_)) + 2, retire);
 }
 
 }  // namespace passtrace

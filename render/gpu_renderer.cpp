@@ -91,7 +91,11 @@ FrameResult GpuRenderer::render(const CameraSpec& camera, int bounces, bool capt
   const std::vector<glm::vec4> color = rays_.read(kColorSurface);
   result.rgb.reserve(3 * elements);
   for (const glm::vec4& c : color) result.rgb.insert(result.rgb.end(), {c.r, c.g, c.b});
-  for (const glm::vec4& t : rays_.read(kThroughputSurface)) result.stats.steps += uint64_t(t.w);
+  result.steps.reserve(elements);
+  for (const glm::vec4& t : rays_.read(kThroughputSurface)) {
+    result.steps.push_back(t.w);
+    result.stats.steps += uint64_t(t.w);
+  }
   for (const glm::vec4& p : rays_.read(kPendingSurface)) result.stats.triangleTests += uint64_t(p.w);
   rays_.disable();
   return result;

@@ -15,6 +15,7 @@
 namespace passtrace {
 
 class InOutStream;
+class StreamKernel;
 
 class GpuTraversal {
  public:
@@ -27,13 +28,32 @@ class GpuTraversal {
   virtual AccelStats stats() const = 0;
 };
 
+// How the uniform grid runs on the GPU (--grid-kernels).
+enum class GridKernels {
+  Merged,  // one traversal+intersection kernel with a loop (the thesis's choice)
+  Split    // Purcell's separate traversal and intersection kernels
+};
+
 struct GpuTraversalConfig {
   AccelBuildConfig build;
   int loopLimit = 20;  // traversal steps per element per pass (tracy's -l)
+  GridKernels gridKernels = GridKernels::Merged;
 };
 
-// Builds accelerator `number` (thesis Table 4, GPU column: 0 = K/K BVH) and
-// uploads it. Throws std::invalid_argument for a number with no GPU version.
+// The GPU column of thesis Table 4: 0 kk-bvh, 1 gs-bvh, 2 kd-restart,
+// 3 kd-backtrack, 4 grid. Both throw std::invalid_argument for anything else.
+std::string gpuAcceleratorName(int number);
+int gpuAcceleratorNumber(const std::string& nameOrNumber);
+
+// Shared by the implementations: binds the ray surfaces a traversal kernel
+// reads (uOrigin, uDirection, uState, uHit, uAux), and runs `kernel` pass
+// after pass until `retire` has retired all `active` rays. More than
+// `maxPasses` passes means a kernel bug: that throws GlError.
+void bindRayInputs(StreamKernel& kernel, const InOutStream& rays);
+uint64_t runTraversalPasses(StreamKernel& kernel, uint64_t active, uint64_t maxPasses,
+                            const std::function<uint64_t()>& retire);
+
+// Builds GPU accelerator `number` and uploads it.
 std::unique_ptr<GpuTraversal> makeGpuTraversal(int number, const Scene& scene, const GpuTraversalConfig& config);
 
 }  // namespace passtrace

@@ -12,6 +12,7 @@ enum RaySurface : int {
   kColorSurface,        // accumulated radiance
   kThroughputSurface,   // rgb path weight, w traversal steps so far
   kPendingSurface,      // rgb light awaiting a shadow ray, w triangle tests so far
+  kAuxSurface,          // traversal state an accelerator needs beyond kStateSurface
   kRaySurfaceCount
 };
 

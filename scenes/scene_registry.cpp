@@ -1,11 +1,18 @@
 #include "scenes/scene_registry.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 
+#include "scenes/aff_loader.h"
 #include "scenes/cornell_box.h"
+#include "scenes/cows_scene.h"
+#include "scenes/gltf_loader.h"
 #include "scenes/obj_loader.h"
 #include "scenes/scene_error.h"
 
@@ -17,42 +24,110 @@ namespace fs = std::filesystem;
 // The Stanford bunny as Debian's glmark2-data package ships it.
 const fs::path kBunnyPath = "/usr/share/glmark2/models/bunny.obj";
 
-// A view from the front, slightly above, far enough back that the bounding
-// sphere fits the 45-degree field of view, and a light above, in front of and
-// to the right of the camera.
-void frame(Scene& scene) {
-  const Aabb box = scene.bounds();
-  const glm::vec3 centre = box.center();
+// The thesis's scene numbers (-s 0..4), table 1's order.
+const std::array<const char*, 5> kThesisOrder = {"cows", "robots", "kitchen", "bunny", "cornell"};
+
+float radiusOf(const Aabb& box) {
   float r = 0.5f * glm::length(box.extent());
   if (!(r > 0.0f) || !std::isfinite(r)) r = 1.0f;  // a degenerate mesh still gets a usable camera
-  scene.camera = CameraSpec{centre + r * glm::vec3(0.0f, 0.1f, 2.6f), centre, {0.0f, 1.0f, 0.0f}, 45.0f};
-  scene.light = PointLight{centre + r * glm::vec3(1.5f, 2.5f, 2.0f), glm::vec3(1.0f)};
+  return r;
+}
+
+glm::vec3 centreOf(const Aabb& box) {
+  const glm::vec3 c = box.center();
+  return (box.empty() || !std::isfinite(c.x + c.y + c.z)) ? glm::vec3(0.0f) : c;
+}
+
+// A view and light framed on the bounds, and a dark blue-grey background.
+void frame(Scene& scene) {
+  const Aabb box = scene.bounds();
+  scene.camera = framedCamera(box);
+  scene.light = framedLight(box);
   scene.background = {0.1f, 0.12f, 0.16f};
   scene.ambient = 0.1f;
 }
 
-Scene loadFile(const fs::path& path) {
+std::string lowerExtension(const fs::path& path) {
   std::string extension = path.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
+
+Scene loadFile(const fs::path& path, const SceneOptions& options) {
+  const std::string extension = lowerExtension(path);
   if (extension.empty()) throw SceneError(path, "unsupported scene format (no file extension)");
+  if (extension == ".aff" || extension == ".nff") return loadAff(path, options.time);
+  if (extension == ".gltf" || extension == ".glb") return loadGltf(path);
   if (extension != ".obj") throw SceneError(path, "unsupported scene format '" + extension + "'");
   Scene scene = loadObj(path);
   frame(scene);
   return scene;
 }
 
+fs::path executableDir() {
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? fs::path() : exe.parent_path();
+}
+
+// A BART scene: DIR/<scene>/aff/<file>.
+Scene loadBart(const std::string& name, const fs::path& relative, const SceneOptions& options) {
+  fs::path dir = options.bartDir.empty() ? defaultBartDir() : options.bartDir;
+  std::error_code ec;
+  if (dir.empty())
+    throw SceneError(name + ": the BART scenes were not found (looked for ../shared/scenes/bart next to the current "
+                            "directory and the executable); set PASSTRACE_BART_DIR to the directory holding "
+                            "kitchen/ and robots/");
+  const fs::path file = dir / relative;
+  if (!fs::exists(file, ec))
+    throw SceneError(name + ": " + file.string() + " not found (the BART directory is " + dir.string() +
+                     "; set PASSTRACE_BART_DIR to the directory holding kitchen/ and robots/)");
+  Scene scene = loadAff(file, options.time);
+  scene.name = name;
+  return scene;
+}
+
 }  // namespace
 
-std::vector<std::string> builtinSceneNames() { return {"cornell", "bunny"}; }
+CameraSpec framedCamera(const Aabb& box) {
+  const glm::vec3 centre = centreOf(box);
+  const float r = radiusOf(box);
+  return CameraSpec{centre + r * glm::vec3(0.0f, 0.1f, 2.6f), centre, {0.0f, 1.0f, 0.0f}, 45.0f};
+}
 
-Scene loadScene(const std::string& nameOrPath) {
+PointLight framedLight(const Aabb& box) {
+  return PointLight{centreOf(box) + radiusOf(box) * glm::vec3(1.5f, 2.5f, 2.0f), glm::vec3(1.0f)};
+}
+
+fs::path defaultBartDir() {
+  if (const char* env = std::getenv("PASSTRACE_BART_DIR"); env != nullptr && *env != '\0') return fs::path(env);
+  std::error_code ec;
+  const fs::path relative = fs::path("..") / "shared" / "scenes" / "bart";
+  const fs::path cwd = fs::current_path(ec);
+  if (!ec && fs::is_directory(cwd / relative, ec)) return (cwd / relative).lexically_normal();
+  const fs::path exeDir = executableDir();
+  if (!exeDir.empty() && fs::is_directory(exeDir.parent_path() / relative, ec))
+    return (exeDir.parent_path() / relative).lexically_normal();
+  return {};
+}
+
+std::vector<std::string> builtinSceneNames() { return {kThesisOrder.begin(), kThesisOrder.end()}; }
+
+Scene loadScene(const std::string& nameOrPath) { return loadScene(nameOrPath, SceneOptions{}); }
+
+Scene loadScene(const std::string& nameOrPath, const SceneOptions& options) {
+  if (nameOrPath.size() == 1 && nameOrPath[0] >= '0' && nameOrPath[0] <= '4')
+    return loadScene(kThesisOrder[static_cast<std::size_t>(nameOrPath[0] - '0')], options);
   if (nameOrPath == "cornell") return makeCornellBox();
+  if (nameOrPath == "cows") return makeCowsScene();
+  if (nameOrPath == "robots") return loadBart("robots", fs::path("robots") / "aff" / "Robot.aff", options);
+  if (nameOrPath == "kitchen") return loadBart("kitchen", fs::path("kitchen") / "aff" / "kitchen.aff", options);
   if (nameOrPath == "bunny") {
     std::error_code ignored;
     if (!fs::exists(kBunnyPath, ignored))
       throw SceneError("bunny", kBunnyPath.string() + " not found (install glmark2-data)");
-    Scene scene = loadFile(kBunnyPath);
+    Scene scene = loadFile(kBunnyPath, options);
     scene.name = "bunny";
     return scene;
   }
@@ -60,8 +135,9 @@ Scene loadScene(const std::string& nameOrPath) {
   // typo in "scenes/room.obj" reports "cannot open" rather than an unknown name.
   const fs::path path = nameOrPath;
   std::error_code ignored;
-  if (fs::exists(path, ignored) || path.has_extension()) return loadFile(path);
-  throw SceneError("unknown scene '" + nameOrPath + "' (expected cornell, bunny or a file path)");
+  if (fs::exists(path, ignored) || path.has_extension()) return loadFile(path, options);
+  throw SceneError("unknown scene '" + nameOrPath +
+                   "' (expected cows, robots, kitchen, bunny, cornell, 0-4 or a file path)");
 }
 
 }  // namespace passtrace

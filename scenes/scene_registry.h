@@ -1,7 +1,10 @@
 #pragma once
-// Resolves a scene argument: a built-in name ("cornell", "bunny") or a path
-// to a scene file, dispatched by extension.
+// Resolves a scene argument: a built-in name ("cornell", "bunny", "cows",
+// "robots", "kitchen"), a thesis scene number ("0".."4" = cows, robots,
+// kitchen, bunny, cornell, the order of thesis table 1) or a path to a scene
+// file, dispatched by extension (.obj, .aff, .nff, .gltf, .glb).
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -9,11 +12,34 @@
 
 namespace passtrace {
 
-// Throws SceneError for an unknown name, an unsupported format or a bad file.
-// File-loaded scenes (the bunny included) get a view and light framed on
-// their bounds.
-Scene loadScene(const std::string& nameOrPath);
+struct SceneOptions {
+  // Where the BART scenes live (holding kitchen/aff/kitchen.aff and
+  // robots/aff/Robot.aff). Empty: defaultBartDir().
+  std::filesystem::path bartDir;
+  // The time at which AFF animated transforms are evaluated (--time).
+  float time = 0.0f;
+};
 
+// $PASSTRACE_BART_DIR when set (even if it does not exist, so that a wrong
+// setting is reported rather than silently bypassed); else the first
+// existing one of ../shared/scenes/bart relative to the current directory and
+// relative to the parent of the executable's directory; else empty.
+std::filesystem::path defaultBartDir();
+
+// Throws SceneError for an unknown name, an unsupported format, missing BART
+// scenes or a bad file. OBJ scenes (the bunny included) get a view and light
+// framed on their bounds; AFF/NFF and glTF scenes keep their own view and
+// light where the file has them and are framed otherwise.
+Scene loadScene(const std::string& nameOrPath, const SceneOptions& options);
+Scene loadScene(const std::string& nameOrPath);  // default options
+
+// The built-in names in thesis order: cows, robots, kitchen, bunny, cornell.
 std::vector<std::string> builtinSceneNames();
+
+// The framing that file scenes without their own view or light get: a
+// 45-degree view from the front (+z), slightly above, far enough back that the
+// bounding sphere fits; a light above, in front of and to the right.
+CameraSpec framedCamera(const Aabb& bounds);
+PointLight framedLight(const Aabb& bounds);
 
 }  // namespace passtrace

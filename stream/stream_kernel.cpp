@@ -39,6 +39,10 @@ void StreamKernel::set(const char* u, const glm::vec4& v) {
   glProgramUniform4f(program_, location(u), v.x, v.y, v.z, v.w);
 }
 
+void StreamKernel::set(const char* u, const glm::ivec3& v) {
+  glProgramUniform3i(program_, location(u), v.x, v.y, v.z);
+}
+
 void StreamKernel::bindTexture(const char* sampler, GLuint texture) {
   auto it = textures_.find(sampler);
   if (it == textures_.end()) {

@@ -44,6 +44,7 @@ class StreamKernel {
   void set(const char* uniform, const glm::vec2& v);
   void set(const char* uniform, const glm::vec3& v);
   void set(const char* uniform, const glm::vec4& v);
+  void set(const char* uniform, const glm::ivec3& v);
 
   // Binds a sampler2D uniform to constant data or to one surface of a stream.
   void bindInput(const char* sampler, const ConstInputStream& stream);

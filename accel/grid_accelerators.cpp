@@ -1,0 +1,146 @@
+#include "accel/grid_accelerators.h"
+
+#include <chrono>
+#include <stdexcept>
+#include <string>
+
+#include "accel/bvh.h"
+#include "accel/bvh_traversal.h"
+#include "accel/escape_sequence.h"
+#include "accel/goldsmith_salmon_builder.h"
+#include "accel/grid_traversal.h"
+#include "accel/octree.h"
+#include "accel/uniform_grid.h"
+#include "accel/uniform_grid_builder.h"
+
+namespace passtrace {
+namespace {
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+GoldsmithSalmonConfig gsConfig(const AccelBuildConfig& config) {
+  GoldsmithSalmonConfig gs;
+  gs.tries = config.gsTries;
+  gs.seed = config.gsSeed;
+  return gs;
+}
+
+// 1: the G/S tree as its escape-index sequence, traversed as the GPU does.
+class SequentialGoldsmithSalmon final : public CpuAccelerator {
+public:
+  SequentialGoldsmithSalmon(std::span<const Triangle> tris, const AccelBuildConfig& config) {
+    SequenceBuild build = buildGoldsmithSalmonSequence(tris, gsConfig(config));
+    sequence_ = std::move(build.sequence);
+    stats_ = std::move(build.stats);
+  }
+  Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
+    return traverseEscapeSequence(sequence_, ray, anyHit, stats);
+  }
+  std::string name() const override { return stats_.name; }
+  AccelStats stats() const override { return stats_; }
+
+private:
+  EscapeSequence sequence_;
+  AccelStats stats_;
+};
+
+// 6: the same tree (same config, same tree), descended recursively.
+class RecursiveGoldsmithSalmon final : public CpuAccelerator {
+public:
+  RecursiveGoldsmithSalmon(std::span<const Triangle> tris, const AccelBuildConfig& config) : tris_(tris) {
+    const auto start = std::chrono::steady_clock::now();
+    bvh_ = buildGoldsmithSalmon(tris, gsConfig(config));
+    stats_.buildMs = millisecondsSince(start);
+    stats_.name = acceleratorName(6);
+    stats_.nodes = bvh_.nodes.size();
+    stats_.leaves = bvh_.leafCount();
+    stats_.references = stats_.leaves;
+    stats_.depth = bvh_.depth();
+    stats_.floatsPerTriangle =
+        stats_.leaves == 0 ? 0.0 : 8.0 * double(stats_.nodes - stats_.leaves) / double(stats_.leaves);
+  }
+  Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
+    return traverseBvhRecursive(bvh_, tris_, ray, anyHit, stats);
+  }
+  std::string name() const override { return stats_.name; }
+  AccelStats stats() const override { return stats_; }
+
+private:
+  std::span<const Triangle> tris_;
+  Bvh bvh_;
+  AccelStats stats_;
+};
+
+// 4: the uniform grid, 3D-DDA.
+class GridAccelerator final : public CpuAccelerator {
+public:
+  GridAccelerator(std::span<const Triangle> tris, const AccelBuildConfig& config) : tris_(tris) {
+    const auto start = std::chrono::steady_clock::now();
+    grid_ = buildUniformGrid(tris, GridConfig{config.gridMultiplier});
+    stats_.buildMs = millisecondsSince(start);
+    stats_.name = acceleratorName(4);
+    stats_.nodes = grid_.cellCount();
+    for (size_t c = 0; c < stats_.nodes; ++c) stats_.leaves += grid_.referenceCount(c) > 0 ? 1 : 0;
+    stats_.references = grid_.references.size();
+    stats_.depth = tris.empty() ? 0 : 1;
+    // flattenGrid's accounting without flattening: one float per cell, and
+    // per non-empty cell its references plus a terminator.
+    stats_.floatsPerTriangle =
+        tris.empty() ? 0.0 : double(stats_.nodes + stats_.references + stats_.leaves) / double(tris.size());
+  }
+  Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
+    return traverseGrid(grid_, tris_, ray, anyHit, stats);
+  }
+  std::string name() const override { return stats_.name; }
+  AccelStats stats() const override { return stats_; }
+
+private:
+  std::span<const Triangle> tris_;
+  UniformGrid grid_;
+  AccelStats stats_;
+};
+
+// 7: the octree, front to back.
+class OctreeAccelerator final : public CpuAccelerator {
+public:
+  explicit OctreeAccelerator(std::span<const Triangle> tris) : tris_(tris) {
+    const auto start = std::chrono::steady_clock::now();
+    octree_ = buildOctree(tris);
+    stats_.buildMs = millisecondsSince(start);
+    stats_.name = acceleratorName(7);
+    stats_.nodes = octree_.nodes.size();
+    stats_.leaves = octree_.leafCount();
+    stats_.references = octree_.references.size();
+    stats_.depth = octree_.depth;
+    stats_.floatsPerTriangle = octree_.floatsPerTriangle(tris.size());
+  }
+  Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
+    return traverseOctree(octree_, tris_, ray, anyHit, stats);
+  }
+  std::string name() const override { return stats_.name; }
+  AccelStats stats() const override { return stats_; }
+
+private:
+  std::span<const Triangle> tris_;
+  Octree octree_;
+  AccelStats stats_;
+};
+
+}  // namespace
+
+std::unique_ptr<CpuAccelerator> makeGridFamilyCpuAccelerator(int number, std::span<const Triangle> tris,
+                                                             const AccelBuildConfig& config) {
+  switch (number) {
+    case 1: return std::make_unique<SequentialGoldsmithSalmon>(tris, config);
+    case 4: return std::make_unique<GridAccelerator>(tris, config);
+    case 6: return std::make_unique<RecursiveGoldsmithSalmon>(tris, config);
+    case 7: return std::make_unique<OctreeAccelerator>(tris);
+    default:
+      throw std::invalid_argument("makeGridFamilyCpuAccelerator: accelerator " + std::to_string(number) +
+                                  " is not one of 1, 4, 6, 7");
+  }
+}
+
+}  // namespace passtrace

@@ -1,0 +1,26 @@
+// kd-tree traversal set-up (thesis 8.5.1): the interval where the ray is
+// inside the scene box, clipped to [0, tMax]; rays that miss it finish here.
+#include "texel_address.glsl"
+#include "intersect.glsl"
+
+layout(early_fragment_tests) in;
+
+uniform sampler2D uOrigin;
+uniform sampler2D uDirection;
+uniform vec3 uSceneMin;
+uniform vec3 uSceneMax;
+
+layout(location = 0) out vec4 outState;  // packed node, steps, tests, hasWork
+layout(location = 1) out vec4 outAux;    // mode, tMin, tMax, sceneMax
+
+void main() {
+  vec4 origin = readElement(uOrigin);
+  vec4 direction = readElement(uDirection);
+  float tNear, tFar;
+  bool inside = clipToBox(origin.xyz, safeInverse(direction.xyz), uSceneMin, uSceneMax, tNear, tFar);
+  float tMin = max(tNear, 0.0);
+  float tMax = min(tFar, direction.w);
+  bool hasWork = inside && tMin <= tMax;
+  outState = vec4(packIndex(0u), 0.0, 0.0, hasWork ? 1.0 : 0.0);
+  outAux = vec4(-1.0, tMin, tMax, tMax);
+}

@@ -1,0 +1,46 @@
+#include "render/gpu_kd_traversal.h"
+
+#include "accel/kd_texels.h"
+#include "render/ray_stream_layout.h"
+#include "stream/inout_stream.h"
+
+namespace passtrace {
+namespace {
+
+std::vector<std::string> defines(KdStreamVariant variant) {
+  if (variant == KdStreamVariant::Backtrack) return {"KD_BACKTRACK"};
+  return {};
+}
+
+}  // namespace
+
+GpuKdTraversal::GpuKdTraversal(KdStreamVariant variant, const KdTexels& texels, const Aabb& sceneBox,
+                               const std::vector<glm::vec4>& triangleTexels, uint64_t maxStepsPerRay, AccelStats stats,
+                               int loopLimit)
+    : nodes_(texels.nodes, "kd-tree nodes"),
+      lists_(texels.lists, "kd-tree triangle lists"),
+      triangles_(triangleTexels, "triangles"),
+      init_("kd_init", "kd_init.frag"),
+      traverse_(variant == KdStreamVariant::Backtrack ? "kd_backtrack" : "kd_restart", "kd_traverse.frag",
+                StreamKernel::Depth::Test, defines(variant)),
+      stats_(std::move(stats)),
+      maxPasses_(maxStepsPerRay / uint64_t(loopLimit) + 2) {
+  init_.set("uSceneMin", sceneBox.min);
+  init_.set("uSceneMax", sceneBox.max);
+  traverse_.bindInput("uNodes", nodes_);
+  traverse_.bindInput("uLists", lists_);
+  traverse_.bindInput("uTriangles", triangles_);
+  traverse_.set("uLoopLimit", loopLimit);
+}
+
+uint64_t GpuKdTraversal::trace(InOutStream& rays, uint64_t active, const std::function<uint64_t()>& retire) {
+  bindRayInputs(init_, rays);
+  bindRayInputs(traverse_, rays);
+  rays.setWriteSurfaces({kStateSurface, kAuxSurface});
+  init_.execute();
+  active -= std::min(active, retire());  // rays that miss the scene box
+  rays.setWriteSurfaces({kStateSurface, kHitSurface, kAuxSurface});
+  return runTraversalPasses(traverse_, active, maxPasses_, retire);
+}
+
+}  // namespace passtrace

@@ -1,0 +1,398 @@
+#include "scenes/gltf_loader.h"
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <iostream>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+// Images are never decoded (textures are not rendered): no stb_image, and a
+// no-op image loader below. tinygltf's JSON is nlohmann's, which the project
+// already links.
+#define TINYGLTF_IMPLEMENTATION
+#define TINYGLTF_NO_STB_IMAGE
+#define TINYGLTF_NO_STB_IMAGE_WRITE
+#define TINYGLTF_NO_EXTERNAL_IMAGE
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-parameter"
+#pragma GCC diagnostic ignored "-Wunused-variable"
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#endif
+#include <tiny_gltf.h>
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
+
+#include "scenes/scene_error.h"
+#include "scenes/scene_registry.h"
+#include "scenes/tessellate.h"
+
+namespace passtrace {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t{1} << 30;
+constexpr std::size_t kMaxTriangles = std::size_t{1} << 25;
+constexpr std::size_t kMaxNodeDepth = 1024;
+
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+  return true;
+}
+
+class GltfBuilder {
+ public:
+  GltfBuilder(const fs::path& file, const tinygltf::Model& model) : file_(file), model_(model) {}
+
+  Scene build();
+
+ private:
+  [[noreturn]] void fail(const std::string& reason) const { throw SceneError(file_, reason); }
+
+  // The bytes of an accessor's elements: checks that they lie inside the
+  // buffer view and the buffer, with the given type and component types.
+  struct View {
+    const unsigned char* data = nullptr;
+    std::size_t stride = 0;
+    std::size_t count = 0;
+    int componentType = 0;
+  };
+  View view(int accessorIndex, const std::string& where, int type, std::initializer_list<int> componentTypes) const {
+    const std::string name = where + ": accessor " + std::to_string(accessorIndex);
+    if (accessorIndex < 0 || static_cast<std::size_t>(accessorIndex) >= model_.accessors.size())
+      fail(where + ": accessor " + std::to_string(accessorIndex) + " does not exist (" +
+           std::to_string(model_.accessors.size()) + " accessors)");
+    const tinygltf::Accessor& a = model_.accessors[static_cast<std::size_t>(accessorIndex)];
+    if (a.sparse.isSparse) fail(name + ": sparse accessors are not supported");
+    if (a.type != type) fail(name + ": wrong element type");
+    bool componentOk = false;
+    for (int c : componentTypes) componentOk = componentOk || a.componentType == c;
+    if (!componentOk) fail(name + ": unsupported component type " + std::to_string(a.componentType));
+    if (a.bufferView < 0 || static_cast<std::size_t>(a.bufferView) >= model_.bufferViews.size())
+      fail(name + ": no valid buffer view (" + std::to_string(a.bufferView) + ")");
+    const tinygltf::BufferView& bv = model_.bufferViews[static_cast<std::size_t>(a.bufferView)];
+    if (bv.buffer < 0 || static_cast<std::size_t>(bv.buffer) >= model_.buffers.size())
+      fail(name + ": buffer view " + std::to_string(a.bufferView) + " names no valid buffer");
+    const tinygltf::Buffer& buffer = model_.buffers[static_cast<std::size_t>(bv.buffer)];
+    const int componentSize = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(a.componentType));
+    const int components = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(a.type));
+    if (componentSize <= 0 || components <= 0) fail(name + ": bad component type or element type");
+    const std::size_t elementSize = static_cast<std::size_t>(componentSize) * static_cast<std::size_t>(components);
+    const std::size_t stride = bv.byteStride == 0 ? elementSize : bv.byteStride;
+    if (stride < elementSize) fail(name + ": byte stride " + std::to_string(stride) + " is smaller than an element");
+    if (bv.byteOffset > buffer.data.size() || bv.byteLength > buffer.data.size() - bv.byteOffset)
+      fail(name + ": buffer view " + std::to_string(a.bufferView) + " lies outside its buffer (" +
+           std::to_string(buffer.data.size()) + " bytes)");
+    View v;
+    v.count = a.count;
+    v.stride = stride;
+    v.componentType = a.componentType;
+    if (a.count > 0) {
+      // offset + stride * (count - 1) + elementSize <= byteLength, without overflow.
+      const std::size_t room = bv.byteLength;
+      if (a.byteOffset > room || elementSize > room - a.byteOffset ||
+          (a.count - 1) > (room - a.byteOffset - elementSize) / stride)
+        fail(name + ": " + std::to_string(a.count) + " elements do not fit in buffer view " +
+             std::to_string(a.bufferView) + " (" + std::to_string(bv.byteLength) + " bytes)");
+    }
+    v.data = buffer.data.data() + bv.byteOffset + a.byteOffset;
+    return v;
+  }
+
+  std::vector<glm::vec3> vec3s(int accessorIndex, const std::string& where) const {
+    const View v = view(accessorIndex, where, TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT});
+    std::vector<glm::vec3> out(v.count);
+    for (std::size_t i = 0; i < v.count; ++i) {
+      std::memcpy(&out[i], v.data + i * v.stride, sizeof(glm::vec3));
+      if (!std::isfinite(out[i].x) || !std::isfinite(out[i].y) || !std::isfinite(out[i].z))
+        fail(where + ": accessor " + std::to_string(accessorIndex) + " element " + std::to_string(i) +
+             " is not finite");
+    }
+    return out;
+  }
+
+  std::vector<uint32_t> indices(int accessorIndex, const std::string& where) const {
+    const View v = view(accessorIndex, where, TINYGLTF_TYPE_SCALAR,
+                        {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT});
+    std::vector<uint32_t> out(v.count);
+    for (std::size_t i = 0; i < v.count; ++i) {
+      const unsigned char* p = v.data + i * v.stride;
+      if (v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) {
+        out[i] = *p;
+      } else if (v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+        uint16_t x;
+        std::memcpy(&x, p, sizeof x);
+        out[i] = x;
+      } else {
+        std::memcpy(&out[i], p, sizeof(uint32_t));
+      }
+    }
+    return out;
+  }
+
+  uint32_t material(int index, const std::string& where) {
+    if (index < 0) return 0;
+    if (static_cast<std::size_t>(index) >= model_.materials.size())
+      fail(where + ": material " + std::to_string(index) + " does not exist (" +
+           std::to_string(model_.materials.size()) + " materials)");
+    return static_cast<uint32_t>(index) + 1;  // 0 is Material{}
+  }
+
+  glm::mat4 localMatrix(const tinygltf::Node& node, std::size_t index) const {
+    const std::string name = "node " + std::to_string(index);
+    if (!node.matrix.empty()) {
+      if (node.matrix.size() != 16) fail(name + ": matrix needs 16 numbers");
+      glm::mat4 m;
+      for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = static_cast<float>(node.matrix[static_cast<std::size_t>(i)]);
+      return m;
+    }
+    glm::mat4 m(1.0f);
+    if (!node.translation.empty()) {
+      if (node.translation.size() != 3) fail(name + ": translation needs 3 numbers");
+      m = glm::translate(m, glm::vec3(node.translation[0], node.translation[1], node.translation[2]));
+    }
+    if (!node.rotation.empty()) {
+      if (node.rotation.size() != 4) fail(name + ": rotation needs 4 numbers");
+      const glm::quat q(static_cast<float>(node.rotation[3]), static_cast<float>(node.rotation[0]),
+                        static_cast<float>(node.rotation[1]), static_cast<float>(node.rotation[2]));
+      m = m * glm::mat4_cast(glm::normalize(q));
+    }
+    if (!node.scale.empty()) {
+      if (node.scale.size() != 3) fail(name + ": scale needs 3 numbers");
+      m = glm::scale(m, glm::vec3(node.scale[0], node.scale[1], node.scale[2]));
+    }
+    return m;
+  }
+
+  void visit(int index, const glm::mat4& parent, std::size_t depth, const std::string& from) {
+    if (index < 0 || static_cast<std::size_t>(index) >= model_.nodes.size())
+      fail(from + ": node " + std::to_string(index) + " does not exist (" + std::to_string(model_.nodes.size()) +
+           " nodes)");
+    const std::size_t i = static_cast<std::size_t>(index);
+    // Nodes form strict trees (spec): a second visit is a cycle or a shared
+    // child, either of which could make the walk endless or explosive.
+    if (visited_[i]) fail(from + ": node " + std::to_string(index) + " has more than one parent (or a cycle)");
+    visited_[i] = true;
+    if (depth > kMaxNodeDepth) fail("node " + std::to_string(index) + ": nodes nested deeper than " + std::to_string(kMaxNodeDepth));
+    const tinygltf::Node& node = model_.nodes[i];
+    const glm::mat4 world = parent * localMatrix(node, i);
+    for (float x : {world[0][0], world[1][1], world[2][2], world[3][0], world[3][1], world[3][2]})
+      if (!std::isfinite(x)) fail("node " + std::to_string(index) + ": transform is not finite");
+
+    if (node.camera >= 0 && !haveCamera_) {
+      if (static_cast<std::size_t>(node.camera) >= model_.cameras.size())
+        fail("node " + std::to_string(index) + ": camera " + std::to_string(node.camera) + " does not exist");
+      const tinygltf::Camera& camera = model_.cameras[static_cast<std::size_t>(node.camera)];
+      if (camera.type == "perspective") {
+        const double yfov = camera.perspective.yfov;
+        if (!(yfov > 0.0 && yfov < M_PI)) fail("camera " + std::to_string(node.camera) + ": yfov must be in (0, pi)");
+        const glm::vec3 eye(world * glm::vec4(0, 0, 0, 1));
+        const glm::vec3 forward = glm::mat3(world) * glm::vec3(0, 0, -1);
+        const glm::vec3 up = glm::mat3(world) * glm::vec3(0, 1, 0);
+        if (glm::length(forward) > 0.0f && glm::length(up) > 0.0f) {
+          scene_.camera = CameraSpec{eye, eye + glm::normalize(forward), glm::normalize(up),
+                                     static_cast<float>(yfov * 180.0 / M_PI)};
+          haveCamera_ = true;
+        }
+      }
+    }
+    if (!haveLight_) {
+      const auto ext = node.extensions.find("KHR_lights_punctual");
+      if (ext != node.extensions.end() && ext->second.IsObject() && ext->second.Has("light") &&
+          ext->second.Get("light").IsNumber()) {
+        const int li = ext->second.Get("light").GetNumberAsInt();
+        if (li < 0 || static_cast<std::size_t>(li) >= model_.lights.size())
+          fail("node " + std::to_string(index) + ": light " + std::to_string(li) + " does not exist (" +
+               std::to_string(model_.lights.size()) + " lights)");
+        const tinygltf::Light& light = model_.lights[static_cast<std::size_t>(li)];
+        if (light.type == "point") {
+          scene_.light.position = glm::vec3(world * glm::vec4(0, 0, 0, 1));
+          scene_.light.color = glm::vec3(1.0f);
+          if (light.color.size() == 3)
+            scene_.light.color = glm::vec3(light.color[0], light.color[1], light.color[2]);
+          haveLight_ = true;
+        }
+      }
+    }
+    if (node.mesh >= 0) {
+      if (static_cast<std::size_t>(node.mesh) >= model_.meshes.size())
+        fail("node " + std::to_string(index) + ": mesh " + std::to_string(node.mesh) + " does not exist (" +
+             std::to_string(model_.meshes.size()) + " meshes)");
+      addMesh(static_cast<std::size_t>(node.mesh), world);
+    }
+    for (int child : node.children) visit(child, world, depth + 1, "node " + std::to_string(index));
+  }
+
+  void addMesh(std::size_t meshIndex, const glm::mat4& world) {
+    const tinygltf::Mesh& mesh = model_.meshes[meshIndex];
+    const glm::mat3 linear(world);
+    const float det = glm::determinant(linear);
+    const glm::mat3 normalMatrix = det != 0.0f ? glm::transpose(glm::inverse(linear)) : linear;
+    for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const tinygltf::Primitive& prim = mesh.primitives[p];
+      const std::string where = "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(p);
+      if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+          prim.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+        if (prim.mode < TINYGLTF_MODE_POINTS || prim.mode > TINYGLTF_MODE_TRIANGLE_FAN)
+          fail(where + ": unknown mode " + std::to_string(prim.mode));
+        ++skipped_;
+        continue;
+      }
+      const auto position = prim.attributes.find("POSITION");
+      if (position == prim.attributes.end()) fail(where + ": no POSITION attribute");
+      const std::vector<glm::vec3> positions = vec3s(position->second, where);
+      std::vector<glm::vec3> normals;
+      if (const auto n = prim.attributes.find("NORMAL"); n != prim.attributes.end()) {
+        normals = vec3s(n->second, where);
+        if (normals.size() != positions.size())
+          fail(where + ": " + std::to_string(normals.size()) + " normals for " + std::to_string(positions.size()) +
+               " positions");
+      }
+      std::vector<uint32_t> order;
+      if (prim.indices >= 0) {
+        order = indices(prim.indices, where);
+        for (std::size_t k = 0; k < order.size(); ++k)
+          if (order[k] >= positions.size())
+            fail(where + ": index " + std::to_string(order[k]) + " out of range (" + std::to_string(positions.size()) +
+                 " vertices)");
+      } else {
+        order.resize(positions.size());
+        for (std::size_t k = 0; k < order.size(); ++k) order[k] = static_cast<uint32_t>(k);
+      }
+      const std::size_t n = order.size();
+      std::vector<std::array<uint32_t, 3>> corners;
+      if (prim.mode == TINYGLTF_MODE_TRIANGLES) {
+        if (n % 3 != 0)
+          fail(where + ": TRIANGLES with " + std::to_string(n) + (prim.indices >= 0 ? " indices" : " vertices") +
+               ", not a multiple of 3");
+        for (std::size_t k = 0; k + 2 < n; k += 3) corners.push_back({order[k], order[k + 1], order[k + 2]});
+      } else if (n > 0 && n < 3) {
+        fail(where + ": a strip or fan needs at least 3 vertices, got " + std::to_string(n));
+      } else if (prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+        // Spec: triangle i is (i, i + 1 + i % 2, i + 2 - i % 2).
+        for (std::size_t k = 0; k + 2 < n; ++k)
+          corners.push_back({order[k], order[k + 1 + k % 2], order[k + 2 - k % 2]});
+      } else {
+        // Spec: triangle i is (i + 1, i + 2, 0).
+        for (std::size_t k = 0; k + 2 < n; ++k) corners.push_back({order[k + 1], order[k + 2], order[0]});
+      }
+      if (scene_.triangles.size() + corners.size() > kMaxTriangles)
+        fail(where + ": the scene exceeds " + std::to_string(kMaxTriangles) + " triangles");
+      const uint32_t materialId = material(prim.material, where);
+      for (auto c : corners) {
+        if (det < 0.0f) std::swap(c[1], c[2]);
+        Triangle t;
+        t.v0 = glm::vec3(world * glm::vec4(positions[c[0]], 1.0f));
+        t.v1 = glm::vec3(world * glm::vec4(positions[c[1]], 1.0f));
+        t.v2 = glm::vec3(world * glm::vec4(positions[c[2]], 1.0f));
+        scene_.triangles.push_back(t);
+        scene_.materialIds.push_back(materialId);
+        std::array<glm::vec3, 3> vn{};
+        const glm::vec3 face = faceNormal(t);
+        for (int k = 0; k < 3; ++k) {
+          vn[k] = face;
+          if (!normals.empty()) {
+            const glm::vec3 m = normalMatrix * normals[c[static_cast<std::size_t>(k)]];
+            const float len = glm::length(m);
+            if (len > 0.0f && std::isfinite(len)) vn[k] = m / len;
+          }
+        }
+        normals_.push_back(vn);
+        anyNormals_ = anyNormals_ || !normals.empty();
+      }
+    }
+  }
+
+  fs::path file_;
+  const tinygltf::Model& model_;
+  Scene scene_;
+  std::vector<bool> visited_;
+  std::vector<std::array<glm::vec3, 3>> normals_;
+  bool anyNormals_ = false;
+  bool haveCamera_ = false;
+  bool haveLight_ = false;
+  std::size_t skipped_ = 0;
+};
+
+Scene GltfBuilder::build() {
+  scene_.materials.push_back(Material{});
+  for (std::size_t i = 0; i < model_.materials.size(); ++i) {
+    const tinygltf::PbrMetallicRoughness& pbr = model_.materials[i].pbrMetallicRoughness;
+    Material m;
+    if (pbr.baseColorFactor.size() >= 3)
+      m.diffuse = glm::vec3(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2]);
+    if (!std::isfinite(m.diffuse.x + m.diffuse.y + m.diffuse.z))
+      fail("material " + std::to_string(i) + ": baseColorFactor is not finite");
+    if (pbr.metallicFactor >= 0.9 && pbr.roughnessFactor <= 0.1) m.mirror = m.diffuse;
+    scene_.materials.push_back(m);
+  }
+  visited_.assign(model_.nodes.size(), false);
+  std::vector<int> roots;
+  if (!model_.scenes.empty()) {
+    const int s = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+    if (static_cast<std::size_t>(s) >= model_.scenes.size()) fail("default scene " + std::to_string(s) + " does not exist");
+    roots = model_.scenes[static_cast<std::size_t>(s)].nodes;
+  } else {
+    std::vector<bool> isChild(model_.nodes.size(), false);
+    for (const tinygltf::Node& node : model_.nodes)
+      for (int c : node.children)
+        if (c >= 0 && static_cast<std::size_t>(c) < isChild.size()) isChild[static_cast<std::size_t>(c)] = true;
+    for (std::size_t i = 0; i < model_.nodes.size(); ++i)
+      if (!isChild[i]) roots.push_back(static_cast<int>(i));
+  }
+  for (int root : roots) visit(root, glm::mat4(1.0f), 0, "scene");
+  if (anyNormals_) scene_.vertexNormals = std::move(normals_);
+  if (skipped_ > 0)
+    std::cerr << file_.string() << ": skipped " << skipped_ << " non-triangle primitive" << (skipped_ == 1 ? "" : "s")
+              << "\n";
+  const Aabb box = scene_.bounds();
+  if (!haveCamera_) scene_.camera = framedCamera(box);
+  if (!haveLight_) scene_.light = framedLight(box);
+  scene_.background = {0.1f, 0.12f, 0.16f};
+  scene_.ambient = 0.1f;
+  scene_.name = file_.stem().string();
+  return std::move(scene_);
+}
+
+}  // namespace
+
+Scene loadGltf(const fs::path& path) {
+  struct stat info {};
+  if (::stat(path.c_str(), &info) != 0) throw SceneError(path, std::string("cannot open: ") + std::strerror(errno));
+  if (!S_ISREG(info.st_mode)) throw SceneError(path, "cannot open: not a regular file");
+  if (static_cast<std::uintmax_t>(info.st_size) > kMaxFileBytes)
+    throw SceneError(path, "file too large (" + std::to_string(info.st_size) + " bytes; the limit is 1 GiB)");
+
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(&skipImage, nullptr);
+  tinygltf::Model model;
+  std::string error, warning;
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  bool ok = false;
+  try {
+    ok = extension == ".glb" ? loader.LoadBinaryFromFile(&model, &error, &warning, path.string())
+                             : loader.LoadASCIIFromFile(&model, &error, &warning, path.string());
+  } catch (const std::exception& e) {
+    throw SceneError(path, std::string("bad glTF: ") + e.what());
+  }
+  if (!ok) throw SceneError(path, error.empty() ? "tinygltf could not read the file" : error);
+  return GltfBuilder(path, model).build();
+}
+
+}  // namespace passtrace
