@@ -1,10 +1,12 @@
 #include "accel/goldsmith_salmon_builder.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <limits>
 #include <numeric>
 #include <random>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -60,8 +62,13 @@ class Inserter {
     bool bestPair = false;
     uint32_t bestNode = 0;
     heap_.clear();
-    auto later = [](const Candidate& x, const Candidate& y) {  // min-heap on (cost, node): a total order
-      return x.cost > y.cost || (x.cost == y.cost && x.node > y.node);
+    // Min-heap on (cost, leaves below, node index), a total order: equal
+    // costs (zero-area geometry) go to the lightest subtree first, which
+    // keeps such trees balanced and finds a free slot after a few pops.
+    auto later = [this](const Candidate& x, const Candidate& y) {
+      if (x.cost != y.cost) return x.cost > y.cost;
+      const uint32_t lx = nodes_[x.node].leaves, ly = nodes_[y.node].leaves;
+      return lx != ly ? lx > ly : x.node > y.node;
     };
     {
       const BuildNode& root = nodes_[0];
@@ -274,24 +281,57 @@ Bvh buildGoldsmithSalmon(std::span<const Triangle> tris, const GoldsmithSalmonCo
   std::vector<Aabb> boxes(tris.size());
   for (size_t i = 0; i < tris.size(); ++i) boxes[i] = tris[i].bounds();
 
+  // The shuffles are drawn one after another from one stream (so the first
+  // try is the same whatever `tries` is), then built on worker threads.
+  const int tries = std::max(1, config.tries);
+  std::vector<std::vector<uint32_t>> orders(static_cast<size_t>(tries));
   std::vector<uint32_t> order(tris.size());
   std::iota(order.begin(), order.end(), 0u);
   std::mt19937_64 rng(config.seed);
-  Inserter inserter(boxes, static_cast<uint32_t>(std::max(2, config.maxChildren)), config.search == GoldsmithSalmonSearch::BranchAndBound);
-  std::vector<BuildNode> best;
-  double bestCost = std::numeric_limits<double>::infinity();
-  for (int attempt = 0; attempt < std::max(1, config.tries); ++attempt) {
+  for (auto& o : orders) {
     // Fisher-Yates on the previous order, spelled out so every standard
     // library gives the same sequence (std::shuffle is unspecified).
     for (size_t i = order.size() - 1; i > 0; --i) std::swap(order[i], order[rng() % (i + 1)]);
-    inserter.clear();
-    for (const uint32_t tri : order) inserter.insert(tri);
-    const double cost = inserter.cost();
-    if (cost < bestCost) {
-      bestCost = cost;
-      std::swap(best, inserter.nodes());
-    }
+    o = order;
   }
+  const uint32_t maxChildren = static_cast<uint32_t>(std::max(2, config.maxChildren));
+  const bool exhaustive = config.search == GoldsmithSalmonSearch::BranchAndBound;
+  int threads = config.threads > 0 ? config.threads : static_cast<int>(std::thread::hardware_concurrency());
+  threads = std::clamp(threads, 1, tries);
+
+  // Each worker keeps its cheapest try; ties go to the lower try index, so
+  // the result does not depend on the thread count or scheduling.
+  struct Best {
+    double cost = std::numeric_limits<double>::infinity();
+    int attempt = -1;
+    std::vector<BuildNode> nodes;
+  };
+  std::vector<Best> bests(static_cast<size_t>(threads));
+  std::atomic<int> next{0};
+  auto work = [&](Best& best) {
+    Inserter inserter(boxes, maxChildren, exhaustive);
+    for (int attempt = next++; attempt < tries; attempt = next++) {
+      inserter.clear();
+      for (const uint32_t tri : orders[static_cast<size_t>(attempt)]) inserter.insert(tri);
+      const double cost = inserter.cost();
+      if (best.attempt < 0 || cost < best.cost || (cost == best.cost && attempt < best.attempt)) {
+        best.cost = cost;
+        best.attempt = attempt;
+        std::swap(best.nodes, inserter.nodes());
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(work, std::ref(bests[static_cast<size_t>(t)]));
+  work(bests[0]);
+  for (std::thread& t : pool) t.join();
+  Best* chosen = &bests[0];
+  for (Best& b : bests)
+    if (b.attempt >= 0 && (chosen->attempt < 0 || b.cost < chosen->cost ||
+                           (b.cost == chosen->cost && b.attempt < chosen->attempt)))
+      chosen = &b;
+  const double bestCost = chosen->cost;
+  std::vector<BuildNode>& best = chosen->nodes;
   if (estimatedCost) *estimatedCost = bestCost;
   return toBvh(best);
 }

@@ -15,9 +15,19 @@
 // (SA(n + O) - SA(n)) * children(n) for the enlarged box, and at the bottom
 // either SA(n + O) (O becomes one more child of n) or 2 * SA(leaf + O) (a
 // leaf child of n is replaced by a new internal node holding the leaf and O).
-// The descent is greedy: at each node it follows the child whose own best
-// immediate option is cheapest, remembers the cheapest option seen on the
-// path, and stops once the enlargement cost alone exceeds it.
+//
+// Where to insert: the 1987 article descends greedily, following at each
+// node the child whose enlargement plus own cheapest option is least and
+// remembering the cheapest option seen on the path (Greedy below). On 100k
+// triangle meshes that gave trees 2.5x the cost of our Kay/Kajiya tree and
+// 2.5x its traversal steps (sphere, soup), where the thesis found G/S
+// slightly faster than K/K (Table 1). The default therefore finds the
+// cheapest position in the whole tree under the same cost (BranchAndBound:
+// best-first over inherited cost, pruned because any insertion below a node
+// costs at least its inherited cost plus SA(O)), as in Bittner et al.'s
+// insertion-based BVH optimisation (2013). It gives trees of about K/K's cost
+// with 4.5 floats per triangle on a sphere (Table 3: 4.1-5.0) at roughly
+// twice the greedy build time.
 
 #include <cstdint>
 #include <span>
@@ -30,7 +40,7 @@ namespace passtrace {
 
 enum class GoldsmithSalmonSearch {
   Greedy,          // follow the cheapest child down one path (the 1987 article)
-  BranchAndBound,  // the cheapest position in the whole tree (see below)
+  BranchAndBound,  // the cheapest position in the whole tree (see above)
 };
 
 struct GoldsmithSalmonConfig {
@@ -47,16 +57,22 @@ struct GoldsmithSalmonConfig {
   // takes new triangles only below its children. At least 2.
   int maxChildren = 16;
   GoldsmithSalmonSearch search = GoldsmithSalmonSearch::BranchAndBound;
+  // Tries run on this many threads (0: std::thread::hardware_concurrency());
+  // the result is the same for any count.
+  int threads = 0;
 };
 
 // Builds the cheapest of config.tries trees; an empty span gives an empty
 // Bvh. Children are stored in insertion order (the old leaf before the new
 // triangle when a leaf is split). estimatedCost, when given, receives the
 // kept tree's cost as defined above (0 for an empty or single-leaf tree).
-// Deterministic for given triangles and config, on any standard library (own
-// Fisher-Yates over std::mt19937_64). Ties between options go to the first
-// seen (the current node before its children, then the child with the fewest
-// leaves below it), which keeps coincident geometry balanced.
+// Deterministic for given triangles and config, whatever the thread count and
+// standard library: own Fisher-Yates over std::mt19937_64, a total order on
+// search candidates (cost, then fewest leaves below, then node index), ties
+// between tries to the earlier one. Ties between options go to the first
+// seen (a node's new-child option before its children's); with maxChildren
+// and the fewest-leaves rule, coincident geometry (all areas 0) becomes a
+// balanced tree of depth about log16 N.
 Bvh buildGoldsmithSalmon(std::span<const Triangle> tris, const GoldsmithSalmonConfig& config = {},
                          double* estimatedCost = nullptr);
 

@@ -1,6 +1,7 @@
 #include "accel/kd_tree_builder.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -80,43 +81,82 @@ struct Split {
   float cost = kInfinity;
 };
 
+// Floats as unsigned keys that sort in the same order (negative floats have
+// all bits flipped, positive ones their sign bit set). -0 is made +0 first
+// so equal floats get equal keys.
+uint32_t sortKey(float f) {
+  const auto bits = std::bit_cast<uint32_t>(f + 0.0f);
+  return (bits & 0x80000000u) ? ~bits : bits | 0x80000000u;
+}
+float keyFloat(uint32_t key) { return std::bit_cast<float>((key & 0x80000000u) ? key & 0x7FFFFFFFu : ~key); }
+
+// LSD radix sort (11-bit digits, three passes) for large arrays: the
+// candidate sort is most of the build time, and this makes it linear.
+void sortKeys(std::vector<uint32_t>& keys, std::vector<uint32_t>& scratch) {
+  const size_t n = keys.size();
+  if (n < 512) {
+    std::sort(keys.begin(), keys.end());
+    return;
+  }
+  constexpr int kBits = 11, kBuckets = 1 << kBits;
+  std::vector<uint32_t> counts(3 * kBuckets, 0);
+  for (const uint32_t k : keys)
+    for (int d = 0; d < 3; ++d) ++counts[d * kBuckets + ((k >> (d * kBits)) & (kBuckets - 1))];
+  scratch.resize(n);
+  for (int d = 0; d < 3; ++d) {
+    uint32_t* c = counts.data() + d * kBuckets;
+    uint32_t sum = 0;
+    for (int b = 0; b < kBuckets; ++b) sum += std::exchange(c[b], sum);
+    for (const uint32_t k : keys) scratch[c[(k >> (d * kBits)) & (kBuckets - 1)]++] = k;
+    keys.swap(scratch);
+  }
+}
+
+struct Scratch {
+  std::vector<uint32_t> mins, maxs, tmp;
+};
+
 // Finds the cheapest plane over all three axes. Candidates are the clipped
 // bounds' faces strictly inside the voxel (a plane on the voxel's face
 // leaves one child with everything). With the closed-voxel rule,
-// N_L(p) = #{min <= p} and N_R(p) = #{max >= p}.
-Split findSplit(const std::vector<Ref>& refs, const Aabb& voxel, const KdBuildConfig& config,
-                std::vector<float>& mins, std::vector<float>& maxs) {
+// N_L(p) = #{min <= p} and N_R(p) = #{max >= p}: one merged walk over the
+// sorted mins and maxes.
+Split findSplit(const std::vector<Ref>& refs, const Aabb& voxel, const KdBuildConfig& config, Scratch& s) {
   Split best;
   const glm::vec3 e = voxel.extent();
   const float area = voxel.surfaceArea();
   if (!(area > 0.0f)) return best;  // a point or segment voxel: nothing to weigh
   const float invArea = 1.0f / area;
   const size_t n = refs.size();
-  mins.resize(n);
-  maxs.resize(n);
+  s.mins.resize(n);
+  s.maxs.resize(n);
   for (int axis = 0; axis < 3; ++axis) {
     if (!(e[axis] > 0.0f)) continue;
     for (size_t i = 0; i < n; ++i) {
-      mins[i] = refs[i].bounds.min[axis];
-      maxs[i] = refs[i].bounds.max[axis];
+      s.mins[i] = sortKey(refs[i].bounds.min[axis]);
+      s.maxs[i] = sortKey(refs[i].bounds.max[axis]);
     }
-    std::sort(mins.begin(), mins.end());
-    std::sort(maxs.begin(), maxs.end());
-    const float lo = voxel.min[axis], hi = voxel.max[axis];
+    sortKeys(s.mins, s.tmp);
+    sortKeys(s.maxs, s.tmp);
+    const uint32_t* mins = s.mins.data();
+    const uint32_t* maxs = s.maxs.data();
+    const uint32_t lo = sortKey(voxel.min[axis]), hi = sortKey(voxel.max[axis]);
+    const float loF = voxel.min[axis], hiF = voxel.max[axis];
     const float a1 = e[(axis + 1) % 3], a2 = e[(axis + 2) % 3];
     const float cross = a1 * a2, perimeter = a1 + a2;
     size_t i = 0, j = 0;  // mins consumed (<= p), maxs consumed (< p)
     while (i < n || j < n) {
-      const float p = (i < n && (j >= n || mins[i] <= maxs[j])) ? mins[i] : maxs[j];
+      const uint32_t p = (i < n && (j >= n || mins[i] <= maxs[j])) ? mins[i] : maxs[j];
       while (i < n && mins[i] <= p) ++i;
       if (p > lo && p < hi) {
+        const float pF = keyFloat(p);
         const size_t nLeft = i, nRight = n - j;
-        const float areaLeft = 2.0f * (cross + (p - lo) * perimeter);
-        const float areaRight = 2.0f * (cross + (hi - p) * perimeter);
+        const float areaLeft = 2.0f * (cross + (pF - loF) * perimeter);
+        const float areaRight = 2.0f * (cross + (hiF - pF) * perimeter);
         const float bonus = (nLeft == 0 || nRight == 0) ? config.emptyBonus : 0.0f;
         const float cost = config.traversalCost + config.intersectionCost * (1.0f - bonus) * invArea *
                                                       (areaLeft * float(nLeft) + areaRight * float(nRight));
-        if (cost < best.cost) best = Split{axis, p, cost};
+        if (cost < best.cost) best = Split{axis, pF, cost};
       }
       while (j < n && maxs[j] <= p) ++j;
     }
@@ -153,7 +193,7 @@ KdTree buildKdTree(std::span<const Triangle> tris, const KdBuildConfig& config) 
   }
   root.voxel = tree.bounds;
 
-  std::vector<float> mins, maxs;  // scratch for findSplit
+  Scratch scratch;  // reused by every findSplit
   std::vector<WorkItem> stack;
   stack.push_back(std::move(root));
   while (!stack.empty()) {
@@ -167,7 +207,7 @@ KdTree buildKdTree(std::span<const Triangle> tris, const KdBuildConfig& config) 
 
     const size_t n = item.refs.size();
     Split split;
-    if (n > minElements && item.depth < maxDepth) split = findSplit(item.refs, item.voxel, config, mins, maxs);
+    if (n > minElements && item.depth < maxDepth) split = findSplit(item.refs, item.voxel, config, scratch);
     const float leafCost = config.intersectionCost * static_cast<float>(n);
     if (split.axis < 0 || !(split.cost < leafCost)) {
       node.firstRef = static_cast<uint32_t>(tree.references.size());

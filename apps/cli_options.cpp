@@ -40,7 +40,15 @@ int parseOptions(int argc, char** argv, Options& o) {
                  "5 kk-bvh-recursive, 6 gs-bvh-recursive, 7 octree, and the GPU kernels' own algorithms "
                  "kd-restart, kd-backtrack, grid-stream")
       ->capture_default_str();
-  app.add_option("-s,--scene", o.scene, "scene: cornell, bunny, or an .obj file")->capture_default_str();
+  app.add_option("-s,--scene", o.scene,
+                 "scene: 0 cows, 1 robots, 2 kitchen, 3 bunny, 4 cornell (thesis order), by number or name, or a "
+                 ".obj, .aff, .nff, .gltf or .glb file")
+      ->capture_default_str();
+  app.add_option("--bart-dir", o.bartDir,
+                 "directory holding the BART scenes kitchen/ and robots/ (default: $PASSTRACE_BART_DIR, else "
+                 "../shared/scenes/bart)");
+  app.add_option("--time", o.time, "animation time for AFF scenes (Kochanek-Bartels keyframes)")
+      ->check(CLI::Range(-1e6f, 1e6f))->capture_default_str();
   app.add_option("-w,--resolution", size, "render N x N pixels (default 512)")->check(CLI::Range(1, kMaxImageSide));
   app.add_option("--width", o.width, "image width in pixels")->check(CLI::Range(1, kMaxImageSide));
   app.add_option("--height", o.height, "image height in pixels")->check(CLI::Range(1, kMaxImageSide));

@@ -19,6 +19,8 @@ struct Options {
   int renderer = 2;                 // -r: 0 OpenGL preview, 1 CPU, 2 GPU stream
   std::string accelerator = "0";    // -a: number (thesis Table 4) or name
   std::string scene = "bunny";      // -s: name or file
+  std::string bartDir;              // --bart-dir: where kitchen/ and robots/ are (else $PASSTRACE_BART_DIR)
+  float time = 0.0f;                // --time: AFF animation time
   int width = 512, height = 512;    // -w N, or --width/--height
   int bounces = 3;                  // -b: traces per path, primary and shadow rays included
   bool dumpImages = false;          // -p: write every rendered image

@@ -30,8 +30,8 @@ std::vector<CameraSpec> cameraViews(const Scene& scene, const Options& o) {
   CameraSpec base = scene.camera;
   if (o.fov) base.fovDegrees = *o.fov;
   std::vector<CameraSpec> views;
-  if (o.angles == 1) {
-    views.push_back(base);
+  if (o.angles == 1 || scene.fixedView) {
+    views.assign(size_t(o.angles), base);
   } else {
     Scene pathScene = scene;
     pathScene.camera = base;
@@ -88,7 +88,10 @@ void runPassTrace(const Options& o) {
     throw std::runtime_error("image " + std::to_string(o.width) + "x" + std::to_string(o.height) +
                              " is too large for the CPU renderer (at most 16384x16384 pixels)");
   checkOutputs(o);
-  const Scene scene = loadScene(o.scene);
+  SceneOptions sceneOptions;
+  if (!o.bartDir.empty()) sceneOptions.bartDir = o.bartDir;
+  sceneOptions.time = o.time;
+  const Scene scene = loadScene(o.scene, sceneOptions);
   if (scene.triangles.empty()) throw std::runtime_error(o.scene + ": the scene has no triangles");
   const std::vector<CameraSpec> views = cameraViews(scene, o);
   for (const CameraSpec& v : views) makeCameraBasis(v, o.width, o.height);  // reject a bad camera before building

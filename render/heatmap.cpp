@@ -14,8 +14,13 @@ std::vector<float> heatmapRgb(const std::vector<float>& values, float maxValue) 
                                                               {0.30f, 0.85f, 0.25f},
                                                               {0.98f, 0.85f, 0.15f},
                                                               {0.85f, 0.10f, 0.05f}}};
-  if (maxValue <= 0.0f)
-    for (float v : values) maxValue = std::max(maxValue, v);
+  if (maxValue <= 0.0f && !values.empty()) {
+    // The 99th percentile: a few pathological pixels should not wash out the rest.
+    std::vector<float> sorted = values;
+    const size_t k = std::min(sorted.size() - 1, size_t(0.99 * double(sorted.size())));
+    std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(k), sorted.end());
+    maxValue = sorted[k];
+  }
   std::vector<float> rgb;
   rgb.reserve(3 * values.size());
   for (float v : values) {

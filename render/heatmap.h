@@ -7,7 +7,8 @@
 namespace passtrace {
 
 // RGB image (3 floats per value) with `values` scaled so that `maxValue`
-// (or, when it is 0, the largest value) is the top of the ramp.
+// (or, when it is 0, the 99th percentile of the values) is the top of the
+// ramp; larger values stay at the top.
 std::vector<float> heatmapRgb(const std::vector<float>& values, float maxValue = 0.0f);
 
 }  // namespace passtrace

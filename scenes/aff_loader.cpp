@@ -438,6 +438,19 @@ Scene AffParser::finish(const fs::path& path) {
 
   const Aabb box = scene_.bounds();
   if (!haveView_) scene_.camera = framedCamera(box);
+  // `k camera` places the camera at time_: BART's camera looks down -z with
+  // +y up before its keyframed rotation and translation.
+  if (const auto it = animations_.find("camera"); it != animations_.end()) {
+    const glm::mat4 m = it->second.at(time_);
+    const glm::vec3 eye(m * glm::vec4(0, 0, 0, 1));
+    const glm::vec3 forward = glm::mat3(m) * glm::vec3(0, 0, -1);
+    const glm::vec3 up = glm::mat3(m) * glm::vec3(0, 1, 0);
+    if (glm::length(forward) > 0.0f && glm::length(up) > 0.0f && std::isfinite(eye.x + eye.y + eye.z)) {
+      scene_.camera.eye = eye;
+      scene_.camera.lookAt = eye + glm::normalize(forward);
+      scene_.camera.up = glm::normalize(up);
+    }
+  }
   if (lights_.empty()) {
     scene_.light = framedLight(box);
   } else {
@@ -445,7 +458,9 @@ Scene AffParser::finish(const fs::path& path) {
     scene_.light.color = glm::vec3(0.0f);
     for (const PointLight& l : lights_) scene_.light.color += l.color;
   }
-  if (haveAmbient_) scene_.ambient = std::clamp(0.1f * (ambient_.x + ambient_.y + ambient_.z) / 3.0f, 0.0f, 1.0f);
+  // BART scenes set "am" around 1-3; a third of its mean, at most 0.4, keeps
+  // shadowed streets and rooms readable without flattening the lit surfaces.
+  if (haveAmbient_) scene_.ambient = std::clamp(0.3f * (ambient_.x + ambient_.y + ambient_.z) / 3.0f, 0.0f, 0.4f);
   scene_.name = path.stem().string();
   return std::move(scene_);
 }

@@ -29,7 +29,8 @@
 // (fm: the specular rgb). Our mirrors reflect everything (thesis 4.2), so only
 // near-perfect specular surfaces qualify; glossy ones such as Kitchen's shiny
 // metal (Ks 0.9, shine 97) and Robots' Ks 1.0, shine 157 part stay diffuse,
-// and neither Kitchen nor Robots has a mirror, as in the thesis. Until the first f/fm the material is Material{}.
+// and neither Kitchen nor Robots has a mirror, as in the thesis. Until the
+// first f/fm the material is Material{}.
 //
 // Light rule. Scene holds one point light: it sits at the first `l` of the
 // file (in include order) and its colour is the sum of every `l`'s colour
@@ -38,14 +39,18 @@
 //
 // View. `v` gives eye (from), lookAt (at), up and the field of view `angle`,
 // taken as vertical (as gluPerspective, which BART's viewer used); hither and
-// resolution are checked and ignored. The static `v` view is the default even
-// where a `k camera` animates the camera (the fact sheet allows either; the
-// camera keys are parsed, not applied). Without `v` the view is framed on
-// the bounds.
+// resolution are checked and ignored. Where the file has keyframes `k
+// camera`, they place the camera at `time` instead (BART's camera looks down
+// -z with +y up before its keyed rotation and translation; the `v` angle is
+// kept): at t = 0 this is the overview of Kitchen and the street view of
+// Robots that Foley & Sugerman rendered, whereas Kitchen's static `v` is a
+// close-up of the sink and Robots' is 2,800 units away. The fact sheet allows
+// either; this is the one the thesis approximated. Without `v` or camera keys
+// the view is framed on the bounds.
 //
-// Background `b`, and `am r g b`: ambient = clamp(0.1 * mean(am), 0, 1)
-// (AFF's ambient light scales the default ambient fraction 0.1; without `am`
-// it is 0.1).
+// Background `b`, and `am r g b`: ambient = clamp(0.3 * mean(am), 0, 0.4)
+// (BART's am is 1 in Robots, 2.5 in Kitchen: with one overhead point light
+// and no ambient the Robots street is black; without `am` it is 0.1).
 //
 // Robustness: counts larger than the rest of the file could hold, include
 // nesting deeper than 64, block nesting deeper than 256 and scenes over

@@ -22,8 +22,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kBunnyPath = "/usr/share/glmark2/models/bunny.obj";
-
 enum MaterialId : uint32_t { kGround = 0, kMirror = 1, kBark = 2, kLeaves = 3, kBunny = 4 };
 
 // Uniform floats in [0, 1) from mt19937's raw output (the standard's
@@ -104,8 +102,8 @@ class TreeBuilder {
 // longest side: each corner moves to the mean of its cell, triangles that
 // collapse or repeat are dropped, normals are the area-weighted means of the
 // kept faces around each cell. Centred on x/z, standing on y = 0, 1 unit tall.
-TriangleList decimatedBunny(int cells) {
-  const Scene bunny = loadObj(kBunnyPath);
+TriangleList decimatedBunny(const fs::path& path, int cells) {
+  const Scene bunny = loadObj(path);
   const Aabb box = bunny.bounds();
   const float cell = std::max({box.extent().x, box.extent().y, box.extent().z}) / static_cast<float>(cells);
   using Key = std::tuple<int, int, int>;
@@ -176,7 +174,7 @@ TriangleList blob() {
 
 }  // namespace
 
-Scene makeCowsScene() {
+Scene makeCowsScene(const fs::path& bunnyPath) {
   Scene scene;
   scene.name = "cows";
   scene.materials = {
@@ -197,7 +195,7 @@ Scene makeCowsScene() {
   append(scene, tree.leaves, kLeaves);
 
   std::error_code ignored;
-  const TriangleList animal = fs::exists(kBunnyPath, ignored) ? decimatedBunny(25) : blob();
+  const TriangleList animal = fs::exists(bunnyPath, ignored) ? decimatedBunny(bunnyPath, 25) : blob();
   struct Placement {
     glm::vec3 position;
     float yawDegrees, height;

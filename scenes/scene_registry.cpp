@@ -84,6 +84,7 @@ Scene loadBart(const std::string& name, const fs::path& relative, const SceneOpt
     throw SceneError(name + ": " + file.string() + " not found (the BART directory is " + dir.string() +
                      "; set PASSTRACE_BART_DIR to the directory holding kitchen/ and robots/)");
   Scene scene = loadAff(file, options.time);
+  scene.fixedView = true;
   scene.name = name;
   return scene;
 }
@@ -119,7 +120,11 @@ Scene loadScene(const std::string& nameOrPath) { return loadScene(nameOrPath, Sc
 Scene loadScene(const std::string& nameOrPath, const SceneOptions& options) {
   if (nameOrPath.size() == 1 && nameOrPath[0] >= '0' && nameOrPath[0] <= '4')
     return loadScene(kThesisOrder[static_cast<std::size_t>(nameOrPath[0] - '0')], options);
-  if (nameOrPath == "cornell") return makeCornellBox();
+  if (nameOrPath == "cornell") {
+    Scene scene = makeCornellBox();
+    scene.fixedView = true;
+    return scene;
+  }
   if (nameOrPath == "cows") return makeCowsScene();
   if (nameOrPath == "robots") return loadBart("robots", fs::path("robots") / "aff" / "Robot.aff", options);
   if (nameOrPath == "kitchen") return loadBart("kitchen", fs::path("kitchen") / "aff" / "kitchen.aff", options);

@@ -102,7 +102,7 @@ TEST(NffLoader, EveryPrimitive) {
   expectNear(scene.background, {0.2f, 0.3f, 0.4f});
   expectNear(scene.light.position, {5, 10, 5});
   expectNear(scene.light.color, glm::vec3(1.5f));
-  EXPECT_FLOAT_EQ(scene.ambient, 0.1f);
+  EXPECT_FLOAT_EQ(scene.ambient, 0.1f);  // no am: the default
 }
 
 TEST(NffLoader, RegistryDispatchesNff) {
@@ -127,11 +127,11 @@ TEST(AffLoader, MeshWithNormalsTexcoordsAndTransforms) {
   // The untransformed mesh without normals gets its geometric normal.
   expectNear(scene.triangles[2].v0, {0, 1, 0});
   expectNear(scene.vertexNormals[2][0], {0, 0, -1});
-  // fm: diffuse rgb; Ks 0.2 is no mirror; am 2 -> ambient 0.2.
+  // fm: diffuse rgb; Ks 0.2 is no mirror; am 2 -> ambient 0.6, clamped to 0.4.
   const Material& m = scene.materials[scene.materialIds[0]];
   expectNear(m.diffuse, {0.5f, 0.25f, 0.125f});
   EXPECT_FALSE(m.isMirror());
-  EXPECT_FLOAT_EQ(scene.ambient, 0.2f);
+  EXPECT_FLOAT_EQ(scene.ambient, 0.4f);
   // No view or light in the file: both framed on the bounds.
   expectNear(scene.camera.lookAt, scene.bounds().center());
   EXPECT_GT(scene.light.position.y, scene.bounds().max.y);
@@ -157,6 +157,11 @@ TEST(AffLoader, AnimatedTransformsFollowTheKeysAtTheGivenTime) {
   const Scene at5 = loadAff(file, 5.0f);
   const float h = std::sqrt(2.0f);
   expectNear(at5.triangles[0].v1, {5 + h, h, 0}, 1e-4f);  // halfway
+  // `k camera` overrides the v view's placement; the v angle stays.
+  expectNear(at0.camera.eye, {1, 2, 3});
+  expectNear(at0.camera.lookAt, {0, 2, 3});
+  expectNear(at0.camera.up, {0, 1, 0});
+  EXPECT_EQ(at0.camera.fovDegrees, 50.0f);
   const Scene after = loadAff(file, 50.0f);               // held after the last key
   expectNear(after.triangles[0].v1, {10, 2, 0});
   // Through the registry's options.
@@ -169,6 +174,18 @@ TEST(AffLoader, StrayNumbersOnACommandsLineAreIgnored) {
   const Scene scene = loadAff(kAffData / "stray.aff");
   EXPECT_EQ(scene.triangles.size(), 1u);
   EXPECT_FALSE(scene.materials[scene.materialIds[0]].isMirror());  // Ks 0.9 < 0.95
+}
+
+TEST(AffLoader, MirrorRule) {
+  const Scene scene = loadAff(kAffData / "mirrors.aff");
+  ASSERT_EQ(scene.triangles.size(), 4u);
+  const Material& mirror = scene.materials[scene.materialIds[0]];
+  EXPECT_TRUE(mirror.isMirror());
+  expectNear(mirror.mirror, {1.0f, 0.97f, 0.96f});
+  expectNear(mirror.diffuse, {0.1f, 0.1f, 0.1f});
+  EXPECT_FALSE(scene.materials[scene.materialIds[1]].isMirror());  // transmissive
+  EXPECT_FALSE(scene.materials[scene.materialIds[2]].isMirror());  // shine 157
+  EXPECT_FALSE(scene.materials[scene.materialIds[3]].isMirror());  // one channel 0.9
 }
 
 TEST(AffLoader, CrlfAndCommentsAnywhere) {
@@ -283,13 +300,13 @@ TEST(AffBart, KitchenHasTheThesisTriangleCount) {
   EXPECT_EQ(scene.materialIds.size(), 110561u);
   EXPECT_EQ(scene.vertexNormals.size(), 110561u);
   for (const Material& m : scene.materials) EXPECT_FALSE(m.isMirror());  // the thesis: no mirrors here
-  // The static view of kitchen.aff; the first lamp with the six lamps' light.
-  expectNear(scene.camera.eye, {1.05369f, 1.13876f, 1.36377f});
+  // The camera keyframes at t = 0 (the overview); the first lamp with the six lamps' light.
+  expectNear(scene.camera.eye, {3.75f, 2.3f, 3.6f});
   EXPECT_EQ(scene.camera.fovDegrees, 40.0f);
   expectNear(scene.light.position, {2.15f, 2.0f, 0.9f});
   expectNear(scene.light.color, glm::vec3(2.0f), 1e-5f);
   expectNear(scene.background, {0.5f, 0.5f, 1.0f});
-  EXPECT_FLOAT_EQ(scene.ambient, 0.25f);
+  EXPECT_FLOAT_EQ(scene.ambient, 0.4f);  // am 2.5: 0.75, clamped
   const Aabb box = scene.bounds();
   EXPECT_TRUE(std::isfinite(box.min.x + box.min.y + box.min.z + box.max.x + box.max.y + box.max.z));
   // The scene number 2 is the kitchen.
@@ -306,7 +323,7 @@ TEST(AffBart, RobotsHasTheThesisTriangleCount) {
   EXPECT_EQ(scene.name, "robots");
   EXPECT_EQ(scene.triangles.size(), 71708u);
   for (const Material& m : scene.materials) EXPECT_FALSE(m.isMirror());
-  expectNear(scene.camera.eye, {2000, 1500, 2000});
+  expectNear(scene.camera.eye, {-3.5f, 2.0f, -203.0f});
   EXPECT_NEAR(scene.camera.fovDegrees, 36.8699f, 1e-3f);
   expectNear(scene.light.position, {1, 500, 1});
   const Aabb box = scene.bounds();

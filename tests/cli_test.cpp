@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include <gtest/gtest.h>
@@ -113,6 +114,24 @@ TEST_F(Cli, CpuRendererWritesImageAndJson) {
   EXPECT_TRUE(fs::exists(path("c.exr")));
 }
 
+TEST_F(Cli, StatsAndHeatmapDescribeTheTraversal) {
+  const RunResult r = run("-s cornell -r 2 -a kd-backtrack -w 32 -b 2 --stats --heatmap " + path("heat.png") +
+                          " --json " + path("s.json"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("floats/triangle"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("traversal steps"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(path("heat.png")));
+  const auto j = nlohmann::json::parse(slurp(path("s.json")));
+  EXPECT_EQ(j["accelerator"], "kd-backtrack");
+  EXPECT_GT(j["steps_per_ray"].get<double>(), 1.0);
+  EXPECT_GT(j["triangle_tests_per_ray"].get<double>(), 0.0);
+  EXPECT_GE(j["accel_nodes"].get<double>(), 1.0);
+  EXPECT_GE(j["accel_references"].get<double>(), 32.0);
+  fs::remove(path("heat.png"));
+  fs::remove(path("s.json"));
+  expectOneLineError(run("-s cornell -r 0 --heatmap " + path("h.png")), "--heatmap");
+}
+
 TEST_F(Cli, PreviewRendererWritesImage) {
   const RunResult r = run("-s cornell -r 0 -w 32 -o " + path("p.png"));
   ASSERT_EQ(r.status, 0) << r.err;
@@ -123,6 +142,17 @@ TEST_F(Cli, DumpImagesWritesOneImagePerAngle) {
   const RunResult r = run("-s cornell -r 1 -w 16 -n 3 -p -o " + path("a.png"));
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* name : {"a.png", "a_0.png", "a_1.png", "a_2.png"}) EXPECT_TRUE(fs::exists(path(name))) << name;
+}
+
+TEST_F(Cli, CameraPathGivesDistinctViewsExceptForFixedViewScenes) {
+  RunResult r = run("-s bunny -r 1 -b 1 -w 32 -n 100 -p -o " + path("b.png"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::set<std::string> images;
+  for (int k = 0; k < 100; ++k) images.insert(slurp(path("b_" + std::to_string(k) + ".png")));
+  EXPECT_EQ(images.size(), 100u) << "every angle of the path shows the bunny differently";
+  r = run("-s cornell -r 1 -b 1 -w 12 -n 3 -p -o " + path("c.png"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(slurp(path("c_0.png")), slurp(path("c_2.png"))) << "the Cornell box keeps its one view (thesis 10.1.1)";
 }
 
 // The hit buffers of both ray tracers against brute force on the contract's rays.
@@ -159,6 +189,26 @@ TEST_F(Cli, HitBuffersOfBothRaytracersEqualBruteForce) {
     ASSERT_EQ(r.status, 0) << r.err;
     SCOPED_TRACE("-r " + std::to_string(renderer));
     expectHitsMatchBruteForce(file, bunny, 48);
+  }
+}
+
+// Issue 3: every structure on both ray tracers, bunny and Cornell box.
+TEST_F(Cli, HitBuffersOfEveryAcceleratorEqualBruteForce) {
+  const std::vector<std::pair<int, std::string>> runs = {
+      {2, "kk-bvh"},  {2, "gs-bvh"}, {2, "kd-restart"}, {2, "kd-backtrack"}, {2, "grid"},
+      {2, "grid --grid-kernels split"}, {1, "kk-bvh"}, {1, "gs-bvh"}, {1, "kd-tree"}, {1, "kd-pbrt"}, {1, "grid"},
+      {1, "kk-bvh-recursive"}, {1, "gs-bvh-recursive"}, {1, "octree"}, {1, "kd-restart"}, {1, "kd-backtrack"},
+      {1, "grid-stream"}};
+  for (const char* name : {"cornell", "bunny"}) {
+    const Scene scene = loadScene(name);
+    for (const auto& [renderer, accel] : runs) {
+      const std::string file = path("h.exr");
+      const RunResult r = run(std::string("-s ") + name + " -b 1 -w 40 -t 2 -r " + std::to_string(renderer) + " -a " +
+                              accel + " --hits " + file);
+      ASSERT_EQ(r.status, 0) << r.err;
+      SCOPED_TRACE(std::string(name) + " -r " + std::to_string(renderer) + " -a " + accel);
+      expectHitsMatchBruteForce(file, scene, 40);
+    }
   }
 }
 

@@ -24,6 +24,14 @@ TEST(CowsScene, TriangleCountIsPinnedAndInRange) {
   EXPECT_EQ(scene.vertexNormals.size(), scene.triangles.size());
 }
 
+TEST(CowsScene, FallsBackToABlobWithoutTheBunny) {
+  const Scene scene = makeCowsScene("/nonexistent/bunny.obj");
+  EXPECT_EQ(scene.name, "cows");
+  EXPECT_EQ(scene.triangles.size(), kCowsTrianglesNoBunny);
+  EXPECT_GE(scene.triangles.size(), 20000u);
+  EXPECT_EQ(scene.vertexNormals.size(), scene.triangles.size());
+}
+
 TEST(CowsScene, IsDeterministic) {
   const Scene a = makeCowsScene();
   const Scene b = loadScene("cows");

@@ -644,6 +644,50 @@ TEST(KdTree, ParallelRayOnASplitPlaneSeesBothSides) {
   }
 }
 
+TEST(KdTree, TraversalHandlesTreesDeeperThanTheBuildersMake) {
+  // A hand-made chain of 100 x splits at 1 - (i + 1) / 128 (left child: the
+  // next split; right child: a leaf holding one wall across the ray), deeper
+  // than kKdDepthLimit: the traversal stack must spill, not overflow.
+  constexpr uint32_t kChain = 100;
+  static_assert(kChain > kKdDepthLimit);
+  KdTree tree;
+  std::vector<Triangle> tris;
+  tree.nodes.resize(2 * kChain + 1);
+  Aabb box{glm::vec3(0, -1, -1), glm::vec3(1, 1, 1)};
+  tree.bounds = box;
+  for (uint32_t i = 0; i < kChain; ++i) {
+    const float split = 1.0f - float(i + 1) / 128.0f;
+    KdNode& n = tree.nodes[i];
+    n.axis = 0;
+    n.split = split;
+    n.box = box;
+    n.parent = i == 0 ? kNoHit : i - 1;
+    n.rightChild = 2 * kChain - i;
+    KdNode& r = tree.nodes[n.rightChild];
+    r.parent = i;
+    r.box = box;
+    r.box.min.x = split;
+    const float x = split + 0.25f / 128.0f;  // a wall inside the right leaf
+    r.firstRef = static_cast<uint32_t>(tree.references.size());
+    r.refCount = 1;
+    tree.references.push_back(static_cast<uint32_t>(tris.size()));
+    tris.push_back({glm::vec3(x, -1, -1), glm::vec3(x, 2, -1), glm::vec3(x, -1, 2)});
+    box.max.x = split;
+  }
+  tree.nodes[kChain].parent = kChain - 1;
+  tree.nodes[kChain].box = box;
+  const Ray ray{glm::vec3(-1, 0.1f, 0.1f), glm::vec3(1, 0, 0)};
+  RayStats stats;
+  const Hit hit = traverseKdTree(tree, tris, ray, false, &stats);
+  const Hit brute = intersectBruteForce(tris, ray, false);
+  ASSERT_TRUE(hit.found());
+  EXPECT_EQ(hit.id, brute.id);
+  EXPECT_EQ(hit.id, kChain - 1);  // the deepest split's right leaf is nearest
+  EXPECT_EQ(stats.triangleTests, 1u);
+  const Ray back{glm::vec3(2, 0.1f, 0.1f), glm::vec3(-1, 0, 0)};
+  EXPECT_EQ(traverseKdTree(tree, tris, back, false).id, 0u);
+}
+
 // --- size and speed ----------------------------------------------------------------
 
 TEST(KdTree, LargeMeshesBuildAndTimesArePrinted) {

@@ -372,7 +372,7 @@ TEST(CornellBox, NormalsFaceTheRoom) {
 // --- the registry ---------------------------------------------------------------
 
 TEST(SceneRegistry, BuiltinNames) {
-  EXPECT_EQ(builtinSceneNames(), (std::vector<std::string>{"cornell", "bunny"}));
+  EXPECT_EQ(builtinSceneNames(), (std::vector<std::string>{"cows", "robots", "kitchen", "bunny", "cornell"}));
 }
 
 TEST(SceneRegistry, LoadsCornell) {
@@ -382,7 +382,8 @@ TEST(SceneRegistry, LoadsCornell) {
 }
 
 TEST(SceneRegistry, UnknownName) {
-  EXPECT_EQ(errorOf([] { loadScene("foo"); }), "unknown scene 'foo' (expected cornell, bunny or a file path)");
+  EXPECT_EQ(errorOf([] { loadScene("foo"); }),
+            "unknown scene 'foo' (expected cows, robots, kitchen, bunny, cornell, 0-4 or a file path)");
 }
 
 TEST(SceneRegistry, UnsupportedFormat) {
