@@ -3,13 +3,13 @@
 // terms), with tracy's accelerator numbering (thesis Table 4, CPU column):
 //
 //   0 kk-bvh            K/K BVH, sequential (escape-index sequence)
-//   1 gs-bvh            G/S BVH, sequential          (not implemented yet)
-//   2 kd-tree           Kd-tree                      (not implemented yet)
-//   3 kd-pbrt           Kd-tree (pbrt)               (not implemented yet)
-//   4 grid              Uniform grid                 (not implemented yet)
+//   1 gs-bvh            G/S BVH, sequential
+//   2 kd-tree           Kd-tree (SAH with split clipping, stack traversal)
+//   3 kd-pbrt           Kd-tree built the pbrt way
+//   4 grid              Uniform grid (3D-DDA)
 //   5 kk-bvh-recursive  K/K BVH, recursive
-//   6 gs-bvh-recursive  G/S BVH, recursive           (not implemented yet)
-//   7 octree            Octree                       (not implemented yet)
+//   6 gs-bvh-recursive  G/S BVH, recursive
+//   7 octree            Octree
 //
 // Brute force has no number in tracy; makeBruteForceAccelerator gives it.
 
@@ -69,8 +69,7 @@ public:
 // a std::span of tris, so the caller keeps the triangles alive and unchanged
 // for the accelerator's lifetime (number 0 in fact copies the vertices into
 // its sequence, but callers should not rely on that). Throws
-// std::invalid_argument for numbers 1-4, 6, 7 ("accelerator 4 (Uniform grid)
-// is not implemented yet") and for numbers outside 0-7.
+// std::invalid_argument for numbers outside 0-7.
 std::unique_ptr<CpuAccelerator> makeCpuAccelerator(int number, std::span<const Triangle> tris,
                                                    const AccelBuildConfig& config = {});
 

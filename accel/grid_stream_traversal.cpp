@@ -25,8 +25,11 @@ void advance(const GridStreamData& d, const Ray& ray, Cursor& c) {
   }
   const int axis = c.tNext.x <= c.tNext.y && c.tNext.x <= c.tNext.z ? 0 : (c.tNext.y <= c.tNext.z ? 1 : 2);
   const glm::vec3 invDir = safeInverse(ray.direction);
-  c.cell[axis] += ray.direction[axis] > 0.0f ? 1 : -1;
-  c.tNext[axis] += d.cellSize[axis] * std::fabs(invDir[axis]);
+  const bool forward = ray.direction[axis] > 0.0f;
+  c.cell[axis] += forward ? 1 : -1;
+  // Recomputed from the boundary itself, not accumulated, so it never drifts.
+  const float boundary = d.gridMin[axis] + float(c.cell[axis] + (forward ? 1 : 0)) * d.cellSize[axis];
+  c.tNext[axis] = (boundary - ray.origin[axis]) * invDir[axis];
   c.mode = Cursor::kModeVisit;
   c.done = c.cell[axis] < 0 || c.cell[axis] >= d.resolution[axis];
 }

@@ -42,8 +42,11 @@ void advance(inout GridRay ray) {
     return;
   }
   int axis = ray.tNext.x <= ray.tNext.y && ray.tNext.x <= ray.tNext.z ? 0 : (ray.tNext.y <= ray.tNext.z ? 1 : 2);
-  ray.cell[axis] += ray.direction[axis] > 0.0 ? 1 : -1;
-  ray.tNext[axis] += uCellSize[axis] * abs(ray.invDir[axis]);
+  bool forward = ray.direction[axis] > 0.0;
+  ray.cell[axis] += forward ? 1 : -1;
+  // Recomputed from the boundary itself, not accumulated, so it never drifts.
+  float boundary = uGridMin[axis] + float(ray.cell[axis] + (forward ? 1 : 0)) * uCellSize[axis];
+  ray.tNext[axis] = (boundary - ray.origin[axis]) * ray.invDir[axis];
   ray.mode = MODE_VISIT;
   ray.done = ray.cell[axis] < 0 || ray.cell[axis] >= uGridResolution[axis];
 }

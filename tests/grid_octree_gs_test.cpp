@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
 #include <cmath>
 #include <iostream>
 #include <random>
@@ -151,10 +150,6 @@ Agreement compareWithBruteForce(const CpuAccelerator& accel, std::span<const Tri
       a.steps += stats.steps;
       a.tests += stats.triangleTests;
       if (h.found() != b.found()) {
-        if (getenv("GRID_DEBUG") && a.foundMismatch < 5)
-          std::cout << "MISMATCH " << accel.name() << " o=(" << ray.origin.x << "," << ray.origin.y << "," << ray.origin.z
-                    << ") d=(" << ray.direction.x << "," << ray.direction.y << "," << ray.direction.z << ") tMax=" << ray.tMax
-                    << " anyHit=" << anyHit << " accel t=" << h.t << " id=" << h.id << " brute t=" << b.t << " id=" << b.id << "\n";
         ++a.foundMismatch;
         continue;
       }

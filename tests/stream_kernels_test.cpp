@@ -352,7 +352,9 @@ TEST_F(GlTest, ShadingMatchesCpp) {
   for (int last = 0; last <= 1; ++last) {
     const int n = int(elements.size());
     InOutStream stream(n, 1, kRaySurfaceCount);
-    std::vector<std::vector<glm::vec4>> surfaces(kRaySurfaceCount);
+    // The seven surfaces shading reads and writes (the aux surface is traversal-only).
+    const int shadedSurfaces = kAuxSurface;
+    std::vector<std::vector<glm::vec4>> surfaces(shadedSurfaces);
     for (const Element& e : elements) {
       surfaces[kOriginSurface].emplace_back(e.path.ray.origin, float(e.path.kind));
       surfaces[kDirectionSurface].emplace_back(e.path.ray.direction, e.path.ray.tMax);
@@ -363,11 +365,11 @@ TEST_F(GlTest, ShadingMatchesCpp) {
       surfaces[kThroughputSurface].emplace_back(e.path.throughput, 10.0f);
       surfaces[kPendingSurface].emplace_back(e.path.pending, 20.0f);
     }
-    for (int s = 0; s < kRaySurfaceCount; ++s) stream.upload(s, surfaces[s]);
+    for (int s = 0; s < shadedSurfaces; ++s) stream.upload(s, surfaces[s]);
     ConstInputStream triangles(triangleShadingTexels(scene), "triangles"), materials(materialTexels(scene), "materials");
     StreamKernel shade("shade", "shade.frag");
     const char* samplers[] = {"uOrigin", "uDirection", "uState", "uHit", "uColor", "uThroughput", "uPending"};
-    for (int s = 0; s < kRaySurfaceCount; ++s) shade.bindInput(samplers[s], stream, s);
+    for (int s = 0; s < shadedSurfaces; ++s) shade.bindInput(samplers[s], stream, s);
     shade.bindInput("uTriangles", triangles);
     shade.bindInput("uMaterials", materials);
     shade.set("uLightPosition", scene.light.position);
@@ -381,7 +383,7 @@ TEST_F(GlTest, ShadingMatchesCpp) {
     stream.setWriteSurfaces({0, 1, 2, 3, 4, 5, 6});
     shade.execute();
     std::vector<std::vector<glm::vec4>> out;
-    for (int s = 0; s < kRaySurfaceCount; ++s) out.push_back(stream.read(s));
+    for (int s = 0; s < shadedSurfaces; ++s) out.push_back(stream.read(s));
 
     for (int i = 0; i < n; ++i) {
       PathState expected = elements[i].path;
