@@ -1,0 +1,69 @@
+#!/usr/bin/env python3
+"""Every acceleration structure on both ray tracers, side by side with the
+thesis's Tables 1 (ms per frame, GeForce 6800) and 3 (floats per triangle).
+
+Runs build/passtrace once per (scene, renderer, structure) in one session and
+prints a Markdown table; the per-run JSON goes to --out. Timings are the
+minimum of -m repeats; compare them as ratios within one run.
+"""
+import argparse
+import json
+import pathlib
+import subprocess
+import sys
+
+# Thesis Table 1 (ms per frame) and Table 3 (floats per triangle), GPU column.
+THESIS_MS = {
+    "bunny": {"grid": 667, "kd-restart": 1299, "kd-backtrack": 913, "kk-bvh": 257, "gs-bvh": 275},
+    "cornell": {"grid": 205, "kd-restart": 203, "kd-backtrack": 220, "kk-bvh": 143, "gs-bvh": 103},
+}
+THESIS_FLOATS = {
+    "bunny": {"gs-bvh": 4.6, "kk-bvh": 8.0, "grid": 38.6, "kd-restart": 109.4, "kd-backtrack": 197.1},
+    "cornell": {"gs-bvh": 5.0, "kk-bvh": 7.8, "grid": 6.1, "kd-restart": 2.5, "kd-backtrack": 3.3},
+}
+# Thesis 10.2: per-scene grid resolution multipliers.
+GRID_MULTIPLIER = {"bunny": 1.1, "cornell": 0.6}
+GPU = ["kk-bvh", "gs-bvh", "kd-restart", "kd-backtrack", "grid"]
+CPU = ["kk-bvh", "gs-bvh", "kd-tree", "kd-pbrt", "grid", "kk-bvh-recursive", "gs-bvh-recursive", "octree"]
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--binary", default="build/passtrace")
+    parser.add_argument("--scenes", default="bunny,cornell")
+    parser.add_argument("--size", type=int, default=512)
+    parser.add_argument("--bounces", type=int, default=2)
+    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--out", default="accelerator_table")
+    args = parser.parse_args()
+    out = pathlib.Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+
+    print("| scene | renderer | structure | frame ms | Mrays/s | floats/tri | steps/ray | tests/ray | build ms "
+          "| thesis ms (6800) | ratio to thesis | thesis floats/tri |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for scene in args.scenes.split(","):
+        for renderer, names in (("2", GPU), ("1", CPU)):
+            for name in names:
+                result = out / f"{scene}_r{renderer}_{name}.json"
+                cmd = [args.binary, "-s", scene, "-r", renderer, "-a", name, "-w", str(args.size),
+                       "-b", str(args.bounces), "-m", str(args.repeats), "-g", str(GRID_MULTIPLIER.get(scene, 1.0)),
+                       "--json", str(result), "-q"]
+                run = subprocess.run(cmd, capture_output=True, text=True)
+                if run.returncode != 0:
+                    print(f"| {scene} | {renderer} | {name} | failed: {run.stderr.strip()} |")
+                    continue
+                j = json.loads(result.read_text())
+                thesis_ms = THESIS_MS.get(scene, {}).get(name) if renderer == "2" else None
+                thesis_floats = THESIS_FLOATS.get(scene, {}).get(
+                    {"kd-tree": "kd-restart"}.get(name, name) if renderer == "1" else name)
+                ratio = f"{j['frame_ms'] / thesis_ms:.2f}" if thesis_ms else ""
+                print(f"| {scene} | {'GPU' if renderer == '2' else 'CPU'} | {name} | {j['frame_ms']:.1f} | "
+                      f"{j['mrays_per_s']:.3f} | {j['accel_floats_per_triangle']:.2f} | {j['steps_per_ray']:.1f} | "
+                      f"{j['triangle_tests_per_ray']:.1f} | {j['build_ms']:.0f} | {thesis_ms or ''} | {ratio} | "
+                      f"{thesis_floats if thesis_floats is not None else ''} |", flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
