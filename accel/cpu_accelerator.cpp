@@ -41,7 +41,9 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
 }
 
 // Tree shape statistics shared by both K/K forms.
-AccelStats treeStats(int number, const Bvh& bvh) {
+}  // namespace
+
+AccelStats bvhStats(int number, const Bvh& bvh) {
   AccelStats s;
   s.name = acceleratorName(number);
   s.nodes = bvh.nodes.size();
@@ -52,15 +54,14 @@ AccelStats treeStats(int number, const Bvh& bvh) {
   return s;
 }
 
-// 0: the escape-index sequence, traversed as the GPU does. Keeps only the
-// sequence, which carries its own copy of the vertices.
-class SequentialKayKajiya final : public CpuAccelerator {
+namespace {
+
+// A BVH's escape-index sequence, traversed as the GPU does (0 and 1). Keeps
+// only the sequence, which carries its own copy of the vertices.
+class SequenceAccelerator final : public CpuAccelerator {
 public:
-  SequentialKayKajiya(std::span<const Triangle> tris, const AccelBuildConfig& config) {
-    SequenceBuild build = buildKayKajiyaSequence(tris, config.kayKajiya);
-    sequence_ = std::move(build.sequence);
-    stats_ = std::move(build.stats);
-  }
+  explicit SequenceAccelerator(SequenceBuild build)
+      : sequence_(std::move(build.sequence)), stats_(std::move(build.stats)) {}
   Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
     return traverseEscapeSequence(sequence_, ray, anyHit, stats);
   }
@@ -72,16 +73,11 @@ private:
   AccelStats stats_;
 };
 
-// 5: the same tree, descended recursively; holds the caller's triangles.
-class RecursiveKayKajiya final : public CpuAccelerator {
+// The same kind of tree descended recursively (5 and 6); holds the caller's triangles.
+class RecursiveBvhAccelerator final : public CpuAccelerator {
 public:
-  RecursiveKayKajiya(std::span<const Triangle> tris, const AccelBuildConfig& config) : tris_(tris) {
-    const auto start = std::chrono::steady_clock::now();
-    bvh_ = buildKayKajiya(tris, config.kayKajiya);
-    const double ms = millisecondsSince(start);
-    stats_ = treeStats(5, bvh_);
-    stats_.buildMs = ms;
-  }
+  RecursiveBvhAccelerator(std::span<const Triangle> tris, Bvh bvh, AccelStats stats)
+      : tris_(tris), bvh_(std::move(bvh)), stats_(std::move(stats)) {}
   Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
     return traverseBvhRecursive(bvh_, tris_, ray, anyHit, stats);
   }
@@ -116,20 +112,33 @@ private:
 SequenceBuild buildKayKajiyaSequence(std::span<const Triangle> tris, const KayKajiyaConfig& config) {
   const auto start = std::chrono::steady_clock::now();
   const Bvh bvh = buildKayKajiya(tris, config);
-  SequenceBuild build{flattenEscapeSequence(bvh, tris), treeStats(0, bvh)};
+  SequenceBuild build{flattenEscapeSequence(bvh, tris), bvhStats(0, bvh)};
   build.stats.buildMs = millisecondsSince(start);
   build.stats.floatsPerTriangle = build.sequence.floatsPerTriangle();
   return build;
 }
 
+std::unique_ptr<CpuAccelerator> makeSequenceAccelerator(SequenceBuild build) {
+  return std::make_unique<SequenceAccelerator>(std::move(build));
+}
+
+std::unique_ptr<CpuAccelerator> makeRecursiveBvhAccelerator(std::span<const Triangle> tris, Bvh bvh, AccelStats stats) {
+  return std::make_unique<RecursiveBvhAccelerator>(tris, std::move(bvh), std::move(stats));
+}
+
 std::unique_ptr<CpuAccelerator> makeCpuAccelerator(int number, std::span<const Triangle> tris,
                                                    const AccelBuildConfig& config) {
   info(number);  // throws for numbers outside Table 4
-  if (number == 0) return std::make_unique<SequentialKayKajiya>(tris, config);
+  if (number == 0) return makeSequenceAccelerator(buildKayKajiyaSequence(tris, config.kayKajiya));
   if (number == 1 || number == 4 || number == 6 || number == 7)
     return makeGridFamilyCpuAccelerator(number, tris, config);
   if (number == 2 || number == 3) return makeKdCpuAccelerator(number, tris, config);
-  return std::make_unique<RecursiveKayKajiya>(tris, config);  // 5
+  // 5: the K/K tree descended recursively.
+  const auto start = std::chrono::steady_clock::now();
+  Bvh bvh = buildKayKajiya(tris, config.kayKajiya);
+  AccelStats stats = bvhStats(5, bvh);
+  stats.buildMs = millisecondsSince(start);
+  return makeRecursiveBvhAccelerator(tris, std::move(bvh), std::move(stats));
 }
 
 std::unique_ptr<CpuAccelerator> makeBruteForceAccelerator(std::span<const Triangle> tris) {

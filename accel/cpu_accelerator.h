@@ -19,6 +19,7 @@
 #include <span>
 #include <string>
 
+#include "accel/bvh.h"
 #include "accel/escape_sequence.h"
 #include "accel/geometry.h"
 #include "accel/kay_kajiya_builder.h"
@@ -72,6 +73,16 @@ public:
 // std::invalid_argument for numbers outside 0-7.
 std::unique_ptr<CpuAccelerator> makeCpuAccelerator(int number, std::span<const Triangle> tris,
                                                    const AccelBuildConfig& config = {});
+
+// The two forms every BVH runs in on the CPU: its escape-index sequence,
+// walked as the GPU walks it (accelerators 0 and 1), and the recursive descent
+// of its tree (5 and 6; holds `tris` as above).
+std::unique_ptr<CpuAccelerator> makeSequenceAccelerator(SequenceBuild build);
+std::unique_ptr<CpuAccelerator> makeRecursiveBvhAccelerator(std::span<const Triangle> tris, Bvh bvh, AccelStats stats);
+// Node, leaf, reference and depth counts of a BVH with one triangle per leaf,
+// and its memory as the thesis counts it (8 floats per box), under
+// acceleratorName(number). buildMs is left 0.
+AccelStats bvhStats(int number, const Bvh& bvh);
 
 // Tests every triangle in scene order; holds a span of tris as above.
 std::unique_ptr<CpuAccelerator> makeBruteForceAccelerator(std::span<const Triangle> tris);

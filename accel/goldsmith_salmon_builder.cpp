@@ -352,13 +352,7 @@ double goldsmithSalmonCost(const Bvh& bvh) {
 SequenceBuild buildGoldsmithSalmonSequence(std::span<const Triangle> tris, const GoldsmithSalmonConfig& config) {
   const auto start = std::chrono::steady_clock::now();
   const Bvh bvh = buildGoldsmithSalmon(tris, config);
-  SequenceBuild build;
-  build.sequence = flattenEscapeSequence(bvh, tris);
-  build.stats.name = acceleratorName(1);
-  build.stats.nodes = bvh.nodes.size();
-  build.stats.leaves = bvh.leafCount();
-  build.stats.references = build.stats.leaves;
-  build.stats.depth = bvh.depth();
+  SequenceBuild build{flattenEscapeSequence(bvh, tris), bvhStats(1, bvh)};
   build.stats.floatsPerTriangle = build.sequence.floatsPerTriangle();
   build.stats.buildMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

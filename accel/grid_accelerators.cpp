@@ -27,52 +27,6 @@ GoldsmithSalmonConfig gsConfig(const AccelBuildConfig& config) {
   return gs;
 }
 
-// 1: the G/S tree as its escape-index sequence, traversed as the GPU does.
-class SequentialGoldsmithSalmon final : public CpuAccelerator {
-public:
-  SequentialGoldsmithSalmon(std::span<const Triangle> tris, const AccelBuildConfig& config) {
-    SequenceBuild build = buildGoldsmithSalmonSequence(tris, gsConfig(config));
-    sequence_ = std::move(build.sequence);
-    stats_ = std::move(build.stats);
-  }
-  Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
-    return traverseEscapeSequence(sequence_, ray, anyHit, stats);
-  }
-  std::string name() const override { return stats_.name; }
-  AccelStats stats() const override { return stats_; }
-
-private:
-  EscapeSequence sequence_;
-  AccelStats stats_;
-};
-
-// 6: the same tree (same config, same tree), descended recursively.
-class RecursiveGoldsmithSalmon final : public CpuAccelerator {
-public:
-  RecursiveGoldsmithSalmon(std::span<const Triangle> tris, const AccelBuildConfig& config) : tris_(tris) {
-    const auto start = std::chrono::steady_clock::now();
-    bvh_ = buildGoldsmithSalmon(tris, gsConfig(config));
-    stats_.buildMs = millisecondsSince(start);
-    stats_.name = acceleratorName(6);
-    stats_.nodes = bvh_.nodes.size();
-    stats_.leaves = bvh_.leafCount();
-    stats_.references = stats_.leaves;
-    stats_.depth = bvh_.depth();
-    stats_.floatsPerTriangle =
-        stats_.leaves == 0 ? 0.0 : 8.0 * double(stats_.nodes - stats_.leaves) / double(stats_.leaves);
-  }
-  Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
-    return traverseBvhRecursive(bvh_, tris_, ray, anyHit, stats);
-  }
-  std::string name() const override { return stats_.name; }
-  AccelStats stats() const override { return stats_; }
-
-private:
-  std::span<const Triangle> tris_;
-  Bvh bvh_;
-  AccelStats stats_;
-};
-
 // 4: the uniform grid, 3D-DDA.
 class GridAccelerator final : public CpuAccelerator {
 public:
@@ -133,9 +87,15 @@ private:
 std::unique_ptr<CpuAccelerator> makeGridFamilyCpuAccelerator(int number, std::span<const Triangle> tris,
                                                              const AccelBuildConfig& config) {
   switch (number) {
-    case 1: return std::make_unique<SequentialGoldsmithSalmon>(tris, config);
+    case 1: return makeSequenceAccelerator(buildGoldsmithSalmonSequence(tris, gsConfig(config)));
     case 4: return std::make_unique<GridAccelerator>(tris, config);
-    case 6: return std::make_unique<RecursiveGoldsmithSalmon>(tris, config);
+    case 6: {  // the same tree (same configuration), descended recursively
+      const auto start = std::chrono::steady_clock::now();
+      Bvh bvh = buildGoldsmithSalmon(tris, gsConfig(config));
+      AccelStats stats = bvhStats(6, bvh);
+      stats.buildMs = millisecondsSince(start);
+      return makeRecursiveBvhAccelerator(tris, std::move(bvh), std::move(stats));
+    }
     case 7: return std::make_unique<OctreeAccelerator>(tris);
     default:
       throw std::invalid_argument("makeGridFamilyCpuAccelerator: accelerator " + std::to_string(number) +

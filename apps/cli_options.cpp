@@ -32,8 +32,10 @@ int parseOptions(int argc, char** argv, Options& o) {
   int size = 0;
   std::string eye, lookAt, up;
   float fov = 0.0f;
-  app.add_option("-r,--renderer", o.renderer, "0 OpenGL rasterized preview, 1 CPU ray tracer, 2 GPU stream ray tracer")
-      ->check(CLI::Range(0, 2))->capture_default_str();
+  app.add_option("-r,--renderer", o.renderer,
+                 "0 OpenGL rasterized preview, 1 CPU ray tracer, 2 GPU stream ray tracer, 3 CPU ray tracer through "
+                 "Intel Embree (the baseline; -a is ignored)")
+      ->check(CLI::Range(0, 3))->capture_default_str();
   app.add_option("-a,--accel", o.accelerator,
                  "accelerator, number or name (thesis Table 4). GPU: 0 kk-bvh, 1 gs-bvh, 2 kd-restart, "
                  "3 kd-backtrack, 4 grid. CPU: 0 kk-bvh, 1 gs-bvh, 2 kd-tree, 3 kd-pbrt, 4 grid, "

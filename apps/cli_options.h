@@ -16,7 +16,7 @@ inline constexpr int kMaxImageSide = 65536;
 inline constexpr long long kMaxCpuPixels = 16384LL * 16384LL;  // about 20 GiB of path state
 
 struct Options {
-  int renderer = 2;                 // -r: 0 OpenGL preview, 1 CPU, 2 GPU stream
+  int renderer = 2;                 // -r: 0 OpenGL preview, 1 CPU, 2 GPU stream, 3 CPU through Embree
   std::string accelerator = "0";    // -a: number (thesis Table 4) or name
   std::string scene = "bunny";      // -s: name or file
   std::string bartDir;              // --bart-dir: where kitchen/ and robots/ are (else $PASSTRACE_BART_DIR)

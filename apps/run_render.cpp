@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "accel/cpu_accelerator.h"
+#include "accel/embree_accelerator.h"
 #include "accel/stream_mirror_accelerators.h"
 #include "render/atomic_file.h"
 #include "render/camera.h"
@@ -24,7 +25,7 @@ namespace fs = std::filesystem;
 namespace passtrace {
 namespace {
 
-const char* kRendererNames[] = {"opengl", "cpu", "gpu"};
+const char* kRendererNames[] = {"opengl", "cpu", "gpu", "embree"};
 
 std::vector<CameraSpec> cameraViews(const Scene& scene, const Options& o) {
   CameraSpec base = scene.camera;
@@ -81,10 +82,11 @@ std::unique_ptr<CpuAccelerator> makeCpuAcceleratorFor(const std::string& name, c
 
 void runPassTrace(const Options& o) {
   // Reject an unknown accelerator name before loading anything.
-  const int accelerator = o.renderer == 2 ? gpuAcceleratorNumber(o.accelerator)
+  const int accelerator = o.renderer == 3   ? -1
+                          : o.renderer == 2 ? gpuAcceleratorNumber(o.accelerator)
                           : streamMirrorByName(o.accelerator) ? -1
                                                               : acceleratorNumber(o.accelerator);
-  if (o.renderer == 1 && (long long)o.width * o.height > kMaxCpuPixels)
+  if ((o.renderer == 1 || o.renderer == 3) && (long long)o.width * o.height > kMaxCpuPixels)
     throw std::runtime_error("image " + std::to_string(o.width) + "x" + std::to_string(o.height) +
                              " is too large for the CPU renderer (at most 16384x16384 pixels)");
   checkOutputs(o);
@@ -104,7 +106,7 @@ void runPassTrace(const Options& o) {
   build.kdMaxDepth = o.kdMaxDepth;
 
   std::unique_ptr<GlContext> gl;
-  if (o.renderer != 1) {
+  if (o.renderer == 0 || o.renderer == 2) {
     std::string notices;
     gl = GlContext::create(parseGlBackend(o.glBackend), &notices);
     if (!notices.empty() && !o.quiet) std::cerr << "passtrace: " << notices;
@@ -124,8 +126,10 @@ void runPassTrace(const Options& o) {
     render = [&](const CameraSpec& v, bool hits) { return gpuRenderer->render(v, o.bounces, hits); };
     // One untimed frame first: llvmpipe compiles each kernel on its first draw.
     render(views.front(), false);
-  } else if (o.renderer == 1) {
-    cpuAccelerator = makeCpuAcceleratorFor(o.accelerator, scene, build);
+  } else if (o.renderer == 1 || o.renderer == 3) {
+    // Embree runs through the same CPU renderer: same rays, bounces and shading.
+    cpuAccelerator = o.renderer == 3 ? makeEmbreeAccelerator(scene.triangles)
+                                     : makeCpuAcceleratorFor(o.accelerator, scene, build);
     cpuRenderer = std::make_unique<CpuRenderer>(scene, *cpuAccelerator, o.threads);
     accelStats = cpuAccelerator->stats();
     render = [&](const CameraSpec& v, bool hits) { return cpuRenderer->render(v, o.width, o.height, o.bounces, hits); };

@@ -14,6 +14,8 @@ packages=(
   libopenimageio-dev                            # image and OpenEXR output
   libtinyobjloader-dev libtinygltf-dev          # scene loaders
   glmark2-data                                  # the Stanford bunny (bunny.obj)
+  libembree-dev                                 # Intel Embree 3, the CPU baseline (-r 3)
+  python3 python3-matplotlib                    # the benchmark report and its plots
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -1,0 +1,132 @@
+#!/usr/bin/env python3
+"""Plumbing test of the benchmark suite (scripts/bench.py): a --tiny run writes
+well-formed results, and a second run skips what finished. No timing is asserted.
+
+    python3 tests/bench_test.py --binary build/passtrace
+"""
+import argparse
+import csv
+import json
+import pathlib
+import subprocess
+import sys
+import tempfile
+import time
+
+REPO = pathlib.Path(__file__).resolve().parent.parent
+BENCH = REPO / "scripts" / "bench.py"
+sys.path.insert(0, str(REPO / "scripts"))
+
+passed, failed = 0, 0
+
+
+def check(condition, what):
+    global passed, failed
+    if condition:
+        passed += 1
+        print(f"ok: {what}")
+    else:
+        failed += 1
+        print(f"FAILED: {what}")
+    return condition
+
+
+def run_bench(binary, out):
+    cmd = [sys.executable, str(BENCH), "--tiny", "--out", str(out), "--binary", str(binary)]
+    start = time.monotonic()
+    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=280)
+    return proc, time.monotonic() - start
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--binary", default=str(REPO / "build" / "passtrace"))
+    args = parser.parse_args()
+
+    import bench  # the tiny matrix, from the script itself
+    tiny = bench.MODES["tiny"]
+    expected = {(s, r, st) for s in tiny["scenes"]
+                for r, names in (("gpu", tiny["gpu"]), ("cpu", tiny["cpu"]),
+                                 ("embree", ["embree"] if tiny["embree"] else []))
+                for st in names}
+
+    with tempfile.TemporaryDirectory(prefix="bench_test_") as tmp:
+        out = pathlib.Path(tmp) / "bench"
+        proc, first_s = run_bench(args.binary, out)
+        if not check(proc.returncode == 0, f"bench.py --tiny exits 0 (got {proc.returncode})"):
+            print(proc.stdout[-3000:], proc.stderr[-3000:], sep="\n")
+
+        # results.json
+        try:
+            results = json.loads((out / "results.json").read_text())
+        except (OSError, ValueError) as e:
+            results = None
+            print(f"results.json: {e}")
+        check(results is not None, "results.json exists and parses")
+        results = results or {}
+        for key in ("machine", "runs", "parameters", "command", "wall_s", "heatmaps"):
+            check(key in results, f"results.json has '{key}'")
+        machine = results.get("machine", {})
+        for key in ("cpu", "cores", "memory_gib", "os", "gl_renderer", "gl_backend", "versions", "git_commit",
+                    "git_dirty"):
+            check(key in machine, f"machine block has '{key}'")
+        runs = results.get("runs", [])
+        got = [(r.get("scene"), r.get("renderer"), r.get("structure")) for r in runs]
+        check(len(got) == len(set(got)) and set(got) == expected,
+              f"one run per (scene, renderer, structure) of the tiny matrix ({len(expected)} expected, got {got})")
+        for run in runs:
+            status = run.get("status")
+            check(status in ("ok", "error"), f"{run.get('key')}: finished with status ok or error ({status})")
+            if status == "ok":
+                r = run.get("result", {})
+                for key in ("frame_ms", "rays", "mrays_per_s", "passes", "build_ms", "accel_floats_per_triangle",
+                            "steps_per_ray", "triangle_tests_per_ray", "width", "height", "frames"):
+                    check(key in r, f"{run['key']}: result has '{key}'")
+                check(r.get("width") == tiny["size"], f"{run['key']}: rendered at the tiny size")
+            elif status == "error":
+                check(bool(run.get("error")), f"{run.get('key')}: a failed run records its error")
+        # Only the Embree renderer may be missing from a build (it is optional); everything
+        # else must have worked.
+        bad = [r["key"] for r in runs if r.get("status") != "ok" and r.get("renderer") != "embree"]
+        check(not bad, f"every GPU and CPU run succeeded (failed: {bad})")
+        for h in results.get("heatmaps", []):
+            if h.get("status") == "ok":
+                check((out / h["heatmap"]).is_file(), f"heat map {h['heatmap']} written")
+
+        # results.csv
+        try:
+            with open(out / "results.csv", newline="") as f:
+                rows = list(csv.reader(f))
+        except OSError:
+            rows = []
+        check(bool(rows) and "frame_ms" in rows[0] and "scene" in rows[0], "results.csv has a header")
+        check(len(rows) - 1 == len(runs), f"results.csv has one row per run ({len(rows) - 1} rows, {len(runs)} runs)")
+
+        # REPORT.md
+        report = (out / "REPORT.md").read_text() if (out / "REPORT.md").exists() else ""
+        check(bool(report), "REPORT.md exists")
+        check("Table 1" in report and "thesis" in report, "REPORT.md has the thesis's Table 1 analogue")
+        check("Table 3" in report, "REPORT.md has the Table 3 analogue")
+        check("Embree" in report, "REPORT.md has the ratio to Embree")
+
+        # A second invocation skips the finished runs.
+        before = {r["key"]: r.get("finished_at") for r in runs if r.get("status") == "ok"}
+        proc2, second_s = run_bench(args.binary, out)
+        check(proc2.returncode == 0, f"second bench.py --tiny exits 0 (got {proc2.returncode})")
+        skips = proc2.stderr.count(": skip (finished earlier")
+        n_ok = len(before) + sum(1 for h in results.get("heatmaps", []) if h.get("status") == "ok")
+        check(skips == n_ok, f"second invocation skips the {n_ok} finished runs (skipped {skips})")
+        try:
+            again = json.loads((out / "results.json").read_text())
+        except (OSError, ValueError):
+            again = {}
+        after = {r["key"]: r.get("finished_at") for r in again.get("runs", []) if r.get("status") == "ok"}
+        check(all(after.get(k) == v for k, v in before.items()), "finished runs are kept, not rerun")
+        print(f"first invocation {first_s:.1f} s, second {second_s:.1f} s (informational)")
+
+    print(f"{passed} passed, {failed} failed")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
