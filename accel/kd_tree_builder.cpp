@@ -121,7 +121,8 @@ struct Scratch {
 // leaves one child with everything). With the closed-voxel rule,
 // N_L(p) = #{min <= p} and N_R(p) = #{max >= p}: one merged walk over the
 // sorted mins and maxes.
-Split findSplit(const std::vector<Ref>& refs, const Aabb& voxel, const KdBuildConfig& config, Scratch& s) {
+Split findSplit(const std::vector<Ref>& refs, const Aabb& voxel, const KdBuildConfig& config, float minThickness,
+                Scratch& s) {
   Split best;
   const glm::vec3 e = voxel.extent();
   const float area = voxel.surfaceArea();
@@ -148,8 +149,8 @@ Split findSplit(const std::vector<Ref>& refs, const Aabb& voxel, const KdBuildCo
     while (i < n || j < n) {
       const uint32_t p = (i < n && (j >= n || mins[i] <= maxs[j])) ? mins[i] : maxs[j];
       while (i < n && mins[i] <= p) ++i;
-      if (p > lo && p < hi) {
-        const float pF = keyFloat(p);
+      const float pF = keyFloat(p);
+      if (p > lo && p < hi && pF - loF >= minThickness && hiF - pF >= minThickness) {
         const size_t nLeft = i, nRight = n - j;
         const float areaLeft = 2.0f * (cross + (pF - loF) * perimeter);
         const float areaRight = 2.0f * (cross + (hiF - pF) * perimeter);
@@ -192,6 +193,7 @@ KdTree buildKdTree(std::span<const Triangle> tris, const KdBuildConfig& config) 
     tree.bounds.extend(root.refs.back().bounds);
   }
   root.voxel = tree.bounds;
+  const float minThickness = config.minVoxelFraction * glm::length(tree.bounds.extent());
 
   Scratch scratch;  // reused by every findSplit
   std::vector<WorkItem> stack;
@@ -207,7 +209,7 @@ KdTree buildKdTree(std::span<const Triangle> tris, const KdBuildConfig& config) 
 
     const size_t n = item.refs.size();
     Split split;
-    if (n > minElements && item.depth < maxDepth) split = findSplit(item.refs, item.voxel, config, scratch);
+    if (n > minElements && item.depth < maxDepth) split = findSplit(item.refs, item.voxel, config, minThickness, scratch);
     const float leafCost = config.intersectionCost * static_cast<float>(n);
     if (split.axis < 0 || !(split.cost < leafCost)) {
       node.firstRef = static_cast<uint32_t>(tree.references.size());

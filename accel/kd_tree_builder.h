@@ -36,6 +36,11 @@ struct KdBuildConfig {
   float emptyBonus = 0.0f;      // in [0, 1): discount for splits that cut off empty space
   bool splitClipping = true;    // clip triangles to the voxel for candidates (Havran); false:
                                 // use the triangles' bounds (cut to the voxel)
+  // No voxel thinner than this fraction of the scene's diagonal: the
+  // stackless GPU traversals (kd-restart, kd-backtrack) step from leaf to
+  // leaf by t alone, and a voxel whose t-interval rounds to a single float
+  // is never entered (BART Kitchen has planes 1.8e-7 apart). 0 disables it.
+  float minVoxelFraction = 1e-4f;
 };
 
 // pbrt's and the thesis's maximum depth, 8 + 1.3 log2 N rounded (pbrt floors

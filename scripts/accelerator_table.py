@@ -12,15 +12,9 @@ import pathlib
 import subprocess
 import sys
 
-# Thesis Table 1 (ms per frame) and Table 3 (floats per triangle), GPU column.
-THESIS_MS = {
-    "bunny": {"grid": 667, "kd-restart": 1299, "kd-backtrack": 913, "kk-bvh": 257, "gs-bvh": 275},
-    "cornell": {"grid": 205, "kd-restart": 203, "kd-backtrack": 220, "kk-bvh": 143, "gs-bvh": 103},
-}
-THESIS_FLOATS = {
-    "bunny": {"gs-bvh": 4.6, "kk-bvh": 8.0, "grid": 38.6, "kd-restart": 109.4, "kd-backtrack": 197.1},
-    "cornell": {"gs-bvh": 5.0, "kk-bvh": 7.8, "grid": 6.1, "kd-restart": 2.5, "kd-backtrack": 3.3},
-}
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+from bench_report import THESIS_FLOATS, THESIS_MS  # noqa: E402  (Tables 1 and 3, one copy)
+
 # Thesis 10.2: per-scene grid resolution multipliers.
 GRID_MULTIPLIER = {"bunny": 1.1, "cornell": 0.6}
 GPU = ["kk-bvh", "gs-bvh", "kd-restart", "kd-backtrack", "grid"]
@@ -54,9 +48,9 @@ def main():
                     print(f"| {scene} | {renderer} | {name} | failed: {run.stderr.strip()} |")
                     continue
                 j = json.loads(result.read_text())
-                thesis_ms = THESIS_MS.get(scene, {}).get(name) if renderer == "2" else None
-                thesis_floats = THESIS_FLOATS.get(scene, {}).get(
-                    {"kd-tree": "kd-restart"}.get(name, name) if renderer == "1" else name)
+                thesis_ms = THESIS_MS.get(name, {}).get(scene) if renderer == "2" else None
+                thesis_floats = THESIS_FLOATS.get({"kd-tree": "kd-restart"}.get(name, name) if renderer == "1" else name,
+                                                  {}).get(scene)
                 ratio = f"{j['frame_ms'] / thesis_ms:.2f}" if thesis_ms else ""
                 print(f"| {scene} | {'GPU' if renderer == '2' else 'CPU'} | {name} | {j['frame_ms']:.1f} | "
                       f"{j['mrays_per_s']:.3f} | {j['accel_floats_per_triangle']:.2f} | {j['steps_per_ray']:.1f} | "
