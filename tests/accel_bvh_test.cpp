@@ -19,57 +19,18 @@
 #include "accel/cpu_accelerator.h"
 #include "accel/escape_sequence.h"
 #include "accel/kay_kajiya_builder.h"
+#include "tests/bvh_checks.h"
 #include "tests/test_meshes.h"
 
 namespace passtrace {
 namespace {
 
+using test::expectValidBvh;
 using testmesh::NamedMesh;
 
 bool sameHit(const Hit& a, const Hit& b) { return a.id == b.id && a.t == b.t && a.u == b.u && a.v == b.v; }
 
 bool tiedT(float a, float b) { return std::fabs(a - b) <= 1e-6f * std::max(std::fabs(a), std::fabs(b)); }
-
-// Structural invariants of any BVH with one triangle per leaf: every node is
-// reached once, every triangle sits in exactly one leaf whose box is its
-// bounds, and every box encloses its children's boxes.
-void expectValidTree(const Bvh& bvh, std::span<const Triangle> tris) {
-  if (tris.empty()) {
-    EXPECT_TRUE(bvh.nodes.empty());
-    return;
-  }
-  ASSERT_FALSE(bvh.nodes.empty());
-  std::vector<int> nodeSeen(bvh.nodes.size(), 0), triSeen(tris.size(), 0);
-  std::vector<uint32_t> stack{0};
-  while (!stack.empty()) {
-    const uint32_t index = stack.back();
-    stack.pop_back();
-    ASSERT_LT(index, bvh.nodes.size());
-    ASSERT_EQ(nodeSeen[index]++, 0) << "node " << index << " reached twice";
-    const BvhNode& node = bvh.nodes[index];
-    if (node.isLeaf()) {
-      ASSERT_LT(node.triangle, tris.size());
-      ++triSeen[node.triangle];
-      const Aabb b = tris[node.triangle].bounds();
-      EXPECT_EQ(node.box.min, b.min);
-      EXPECT_EQ(node.box.max, b.max);
-      continue;
-    }
-    EXPECT_EQ(node.triangle, kNoHit);
-    ASSERT_LE(size_t{node.firstChild} + node.childCount, bvh.children.size());
-    for (uint32_t c = 0; c < node.childCount; ++c) {
-      const uint32_t child = bvh.children[node.firstChild + c];
-      ASSERT_LT(child, bvh.nodes.size());
-      const Aabb& cb = bvh.nodes[child].box;
-      EXPECT_TRUE(glm::all(glm::lessThanEqual(node.box.min, cb.min)) &&
-                  glm::all(glm::greaterThanEqual(node.box.max, cb.max)))
-          << "node " << index << " does not enclose child " << child;
-      stack.push_back(child);
-    }
-  }
-  for (size_t n = 0; n < nodeSeen.size(); ++n) EXPECT_EQ(nodeSeen[n], 1) << "node " << n;
-  for (size_t t = 0; t < triSeen.size(); ++t) EXPECT_EQ(triSeen[t], 1) << "triangle " << t;
-}
 
 // Counts disagreements instead of failing per ray, so one bad mesh reports
 // one line, not thousands.
@@ -180,7 +141,7 @@ class BvhMeshTest : public ::testing::TestWithParam<NamedMesh> {};
 TEST_P(BvhMeshTest, TreeIsValidBinaryAndCountsAddUp) {
   const auto& tris = GetParam().tris;
   const Bvh bvh = buildKayKajiya(tris);
-  expectValidTree(bvh, tris);
+  expectValidBvh(bvh, tris);
   EXPECT_EQ(bvh.leafCount(), tris.size());
   EXPECT_EQ(bvh.internalCount(), tris.size() - 1);
   for (const BvhNode& n : bvh.nodes) EXPECT_TRUE(n.isLeaf() || n.childCount == 2);
@@ -278,7 +239,7 @@ TEST_P(BvhMeshTest, SwapProbabilityChangesChildOrderButNeverAHit) {
 TEST_P(BvhMeshTest, NaryTreesFlattenAndTraverseAlike) {
   const auto& tris = GetParam().tris;
   const Bvh nary = collapseRandomly(buildKayKajiya(tris), 99);
-  expectValidTree(nary, tris);
+  expectValidBvh(nary, tris);
   const std::vector<Ray> rays = testmesh::rayMix(testmesh::boundsOf(tris), 300, 77);
   expectAgreement(compareTraversals(nary, tris, rays), GetParam().name + " (n-ary)");
 }
@@ -329,7 +290,7 @@ TEST(KayKajiyaBvh, AllTrianglesAtOnePointStillBuildBalanced) {
   for (const size_t n : {2u, 3u, 1000u, 4096u}) {
     const auto tris = testmesh::pointMesh(n);
     const Bvh bvh = buildKayKajiya(tris, {.swapProbability = 0.0f});
-    expectValidTree(bvh, tris);
+    expectValidBvh(bvh, tris);
     // Halving by index gives a balanced tree: ceil(log2 n) + 1 levels.
     EXPECT_EQ(bvh.depth(), static_cast<uint32_t>(std::ceil(std::log2(double(n)))) + 1) << n;
     // Halving keeps scene order: without swaps, leaves appear in index order.
@@ -354,7 +315,7 @@ TEST(KayKajiyaBvh, CoincidentCentroidsFallBackToHalving) {
   const glm::vec3 c = tris[0].centroid();
   for (const Triangle& t : tris) ASSERT_EQ(t.centroid(), c) << "the mesh must really be coincident";
   const Bvh bvh = buildKayKajiya(tris);
-  expectValidTree(bvh, tris);
+  expectValidBvh(bvh, tris);
   EXPECT_EQ(bvh.depth(), 11u);  // ceil(log2 1000) + 1
 }
 

@@ -27,10 +27,13 @@
 #include "accel/reference_lists.h"
 #include "accel/uniform_grid.h"
 #include "accel/uniform_grid_builder.h"
+#include "tests/bvh_checks.h"
 #include "tests/test_meshes.h"
 
 namespace passtrace {
 namespace {
+
+using test::expectValidBvh;
 
 using testmesh::NamedMesh;
 
@@ -166,47 +169,6 @@ Agreement compareWithBruteForce(const CpuAccelerator& accel, std::span<const Tri
   return a;
 }
 
-// The invariants of any BVH with one triangle per leaf (as in
-// accel_bvh_test.cpp): every node reached once, every triangle in exactly
-// one leaf with its bounds as box, every box enclosing its children.
-void expectValidTree(const Bvh& bvh, std::span<const Triangle> tris) {
-  if (tris.empty()) {
-    EXPECT_TRUE(bvh.nodes.empty());
-    return;
-  }
-  ASSERT_FALSE(bvh.nodes.empty());
-  std::vector<int> nodeSeen(bvh.nodes.size(), 0), triSeen(tris.size(), 0);
-  std::vector<uint32_t> stack{0};
-  while (!stack.empty()) {
-    const uint32_t index = stack.back();
-    stack.pop_back();
-    ASSERT_LT(index, bvh.nodes.size());
-    ASSERT_EQ(nodeSeen[index]++, 0) << "node " << index << " reached twice";
-    const BvhNode& node = bvh.nodes[index];
-    if (node.isLeaf()) {
-      ASSERT_LT(node.triangle, tris.size());
-      ++triSeen[node.triangle];
-      const Aabb b = tris[node.triangle].bounds();
-      EXPECT_EQ(node.box.min, b.min);
-      EXPECT_EQ(node.box.max, b.max);
-      continue;
-    }
-    EXPECT_GE(node.childCount, 2u) << "an internal node with one child is wasted";
-    ASSERT_LE(size_t{node.firstChild} + node.childCount, bvh.children.size());
-    for (uint32_t c = 0; c < node.childCount; ++c) {
-      const uint32_t child = bvh.children[node.firstChild + c];
-      ASSERT_LT(child, bvh.nodes.size());
-      const Aabb& cb = bvh.nodes[child].box;
-      EXPECT_TRUE(glm::all(glm::lessThanEqual(node.box.min, cb.min)) &&
-                  glm::all(glm::greaterThanEqual(node.box.max, cb.max)))
-          << "node " << index << " does not enclose child " << child;
-      stack.push_back(child);
-    }
-  }
-  for (size_t n = 0; n < nodeSeen.size(); ++n) EXPECT_EQ(nodeSeen[n], 1) << "node " << n;
-  for (size_t t = 0; t < triSeen.size(); ++t) EXPECT_EQ(triSeen[t], 1) << "triangle " << t;
-}
-
 bool sameTree(const Bvh& a, const Bvh& b) {
   if (a.nodes.size() != b.nodes.size() || a.children != b.children) return false;
   for (size_t n = 0; n < a.nodes.size(); ++n) {
@@ -267,7 +229,7 @@ TEST_P(GridOctreeGsMeshTest, GoldsmithSalmonGreedyTreeIsValidAndAgrees) {
   const auto& tris = GetParam().tris;
   double cost = -1.0;
   const Bvh bvh = buildGoldsmithSalmon(tris, {.tries = 3, .search = GoldsmithSalmonSearch::Greedy}, &cost);
-  expectValidTree(bvh, tris);
+  expectValidBvh(bvh, tris);
   EXPECT_NEAR(cost, goldsmithSalmonCost(bvh), 1e-9 * std::max(1.0, cost));
   const std::vector<Ray> rays = testmesh::rayMix(testmesh::boundsOf(tris), 300, 8);
   size_t wrong = 0;
@@ -282,7 +244,7 @@ TEST_P(GridOctreeGsMeshTest, GoldsmithSalmonTreeIsValid) {
   const auto& tris = GetParam().tris;
   double cost = -1.0;
   const Bvh bvh = buildGoldsmithSalmon(tris, {}, &cost);
-  expectValidTree(bvh, tris);
+  expectValidBvh(bvh, tris);
   EXPECT_EQ(bvh.leafCount(), tris.size());
   EXPECT_NEAR(cost, goldsmithSalmonCost(bvh), 1e-9 * std::max(1.0, cost));
   for (const BvhNode& n : bvh.nodes) EXPECT_LE(n.childCount, 16u);
@@ -458,7 +420,7 @@ TEST(GoldsmithSalmon, CoincidentGeometryStaysShallow) {
     const auto start = std::chrono::steady_clock::now();
     const Bvh bvh = buildGoldsmithSalmon(points, {.tries = 2, .search = search});
     const double ms = msSince(start);
-    expectValidTree(bvh, points);
+    expectValidBvh(bvh, points);
     EXPECT_LE(bvh.depth(), 12u) << "maxChildren and the tie-breaks keep it balanced";
     std::cout << "[ stats    ] 20000 coincident points: depth " << bvh.depth() << ", " << ms << " ms\n";
   }
