@@ -13,7 +13,7 @@ per scene, and writes into the output directory:
   REPORT.md        Tables 1 and 3 beside the thesis, Mrays/s and the ratio to
                    Embree, per-angle curves, bar charts and heat maps (PNG)
 
-Modes: --quick (default; about 3-4 minutes on a 2-core machine, output
+Modes: --quick (default; about 2-3 minutes on a 2-core machine, at the thesis's 512x512, output
 docs/bench/), --full (the thesis's parameters, output docs/bench-full/),
 --tiny (the plumbing test: Cornell only, 16x16). Ctrl-C stops after writing the
 report from the runs that finished. Timings on shared machines vary by
@@ -59,7 +59,7 @@ MODES = {
         "scenes": SCENES, "gpu": GPU, "cpu": CPU, "embree": True, "out": "docs/bench-full",
     },
     "quick": {
-        "size": 192, "angles": 4, "repeats": 1, "heat_size": 256, "timeout": 300,
+        "size": 512, "angles": 4, "repeats": 1, "heat_size": 512, "timeout": 300,
         "scenes": SCENES, "gpu": GPU, "cpu": CPU, "embree": True, "out": "docs/bench",
     },
     "tiny": {
@@ -386,7 +386,7 @@ def main(argv=None):
         ensure_matplotlib()
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     m = parser.add_mutually_exclusive_group()
-    m.add_argument("--quick", dest="mode", action="store_const", const="quick", help="about 3-4 minutes (default)")
+    m.add_argument("--quick", dest="mode", action="store_const", const="quick", help="about 2-3 minutes at 512x512 (default)")
     m.add_argument("--full", dest="mode", action="store_const", const="full", help="the thesis's parameters")
     m.add_argument("--tiny", dest="mode", action="store_const", const="tiny", help="Cornell, 16x16: the plumbing test")
     parser.set_defaults(mode="quick")
