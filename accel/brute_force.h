@@ -5,12 +5,15 @@
 #include <span>
 
 #include "accel/geometry.h"
+#include "accel/triangle_test.h"
 #include "accel/traversal_stats.h"
 
 namespace passtrace {
 
 // Starts from best = Hit{t = ray.tMax}; with anyHit, stops at the first hit.
 // stats, when given, is added to: one step and one test per triangle.
-Hit intersectBruteForce(std::span<const Triangle> tris, const Ray& ray, bool anyHit, RayStats* stats = nullptr);
+// `test` picks the ray/triangle test (accel/triangle_test.h).
+Hit intersectBruteForce(std::span<const Triangle> tris, const Ray& ray, bool anyHit, RayStats* stats = nullptr,
+                        TriangleTest test = TriangleTest::MollerTrumbore);
 
 }  // namespace passtrace

@@ -5,7 +5,7 @@
 namespace passtrace {
 
 bool stepEscapeSequence(const EscapeSequence& seq, const Ray& ray, bool anyHit, EscapeCursor& cursor,
-                        uint32_t maxSteps) {
+                        uint32_t maxSteps, TriangleTest test) {
   const glm::vec3 invDir = safeInverse(ray.direction);
   const glm::vec4* texels = seq.texels.data();
   const auto size = static_cast<uint32_t>(seq.texels.size());
@@ -21,7 +21,7 @@ bool stepEscapeSequence(const EscapeSequence& seq, const Ray& ray, bool anyHit, 
       const glm::vec4 t2 = texels[idx + 2];
       ++cursor.stats.triangleTests;
       const Triangle tri{glm::vec3(t0), glm::vec3(t1), glm::vec3(t2)};
-      const bool found = intersectTriangle(ray.origin, ray.direction, tri, unpackIndex(t1.w), cursor.best);
+      const bool found = intersectTriangle(ray.origin, ray.direction, tri, unpackIndex(t1.w), cursor.best, test);
       idx = (found && anyHit) ? size : idx + 3;
     }
   }
@@ -29,10 +29,11 @@ bool stepEscapeSequence(const EscapeSequence& seq, const Ray& ray, bool anyHit, 
   return idx < size;
 }
 
-Hit traverseEscapeSequence(const EscapeSequence& seq, const Ray& ray, bool anyHit, RayStats* stats) {
+Hit traverseEscapeSequence(const EscapeSequence& seq, const Ray& ray, bool anyHit, RayStats* stats,
+                           TriangleTest test) {
   EscapeCursor cursor;
   cursor.best.t = ray.tMax;
-  stepEscapeSequence(seq, ray, anyHit, cursor, std::numeric_limits<uint32_t>::max());
+  stepEscapeSequence(seq, ray, anyHit, cursor, std::numeric_limits<uint32_t>::max(), test);
   if (stats) {
     stats->steps += cursor.stats.steps;
     stats->triangleTests += cursor.stats.triangleTests;
@@ -47,6 +48,7 @@ struct RecursiveDescent {
   std::span<const Triangle> tris;
   glm::vec3 origin, direction, invDir;
   bool anyHit;
+  TriangleTest test;
   Hit best;
   uint32_t steps = 0, triangleTests = 0;
 
@@ -56,7 +58,7 @@ struct RecursiveDescent {
     ++steps;
     if (node.isLeaf()) {
       ++triangleTests;
-      intersectTriangle(origin, direction, tris[node.triangle], node.triangle, best);
+      intersectTriangle(origin, direction, tris[node.triangle], node.triangle, best, test);
       return anyHit && best.found();
     }
     if (!intersectsBox(origin, invDir, node.box, best.t)) return false;
@@ -69,8 +71,9 @@ struct RecursiveDescent {
 }  // namespace
 
 Hit traverseBvhRecursive(const Bvh& bvh, std::span<const Triangle> tris, const Ray& ray, bool anyHit,
-                         RayStats* stats) {
-  RecursiveDescent descent{bvh, tris, ray.origin, ray.direction, safeInverse(ray.direction), anyHit, Hit{ray.tMax}};
+                         RayStats* stats, TriangleTest test) {
+  RecursiveDescent descent{bvh, tris, ray.origin, ray.direction, safeInverse(ray.direction), anyHit, test,
+                           Hit{ray.tMax}};
   if (!bvh.nodes.empty()) descent.visit(0);
   if (stats) {
     stats->steps += descent.steps;

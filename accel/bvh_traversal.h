@@ -7,7 +7,8 @@
 // call stack (the "partial evaluation" of section 9.4.2).
 //
 // Both start from best = Hit{t = ray.tMax}: hits at or beyond tMax are
-// ignored. With anyHit, traversal stops at the first triangle hit. Origin and
+// ignored. With anyHit, traversal stops at the first triangle hit. `test`
+// picks the ray/triangle test (accel/triangle_test.h). Origin and
 // direction are used as given (no normalisation).
 
 #include <span>
@@ -15,6 +16,7 @@
 #include "accel/bvh.h"
 #include "accel/escape_sequence.h"
 #include "accel/geometry.h"
+#include "accel/triangle_test.h"
 #include "accel/traversal_stats.h"
 
 namespace passtrace {
@@ -31,15 +33,16 @@ struct EscapeCursor {
 // one pass of kernels_glsl/bvh_traverse.frag with loop limit maxSteps.
 // Returns true while the ray still has work.
 bool stepEscapeSequence(const EscapeSequence& seq, const Ray& ray, bool anyHit, EscapeCursor& cursor,
-                        uint32_t maxSteps);
+                        uint32_t maxSteps, TriangleTest test = TriangleTest::MollerTrumbore);
 
 // stats, when given, is added to (not reset): one step per box or triangle read.
-Hit traverseEscapeSequence(const EscapeSequence& seq, const Ray& ray, bool anyHit, RayStats* stats = nullptr);
+Hit traverseEscapeSequence(const EscapeSequence& seq, const Ray& ray, bool anyHit, RayStats* stats = nullptr,
+                           TriangleTest test = TriangleTest::MollerTrumbore);
 
 // Real recursion, one call per visited node, children in stored order; the
 // depth is the tree's depth, so keep to trees of sane depth (K/K trees of
 // real scenes are a few dozen levels).
 Hit traverseBvhRecursive(const Bvh& bvh, std::span<const Triangle> tris, const Ray& ray, bool anyHit,
-                         RayStats* stats = nullptr);
+                         RayStats* stats = nullptr, TriangleTest test = TriangleTest::MollerTrumbore);
 
 }  // namespace passtrace

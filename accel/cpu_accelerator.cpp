@@ -60,10 +60,10 @@ namespace {
 // only the sequence, which carries its own copy of the vertices.
 class SequenceAccelerator final : public CpuAccelerator {
 public:
-  explicit SequenceAccelerator(SequenceBuild build)
-      : sequence_(std::move(build.sequence)), stats_(std::move(build.stats)) {}
+  SequenceAccelerator(SequenceBuild build, TriangleTest test)
+      : sequence_(std::move(build.sequence)), stats_(std::move(build.stats)), test_(test) {}
   Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
-    return traverseEscapeSequence(sequence_, ray, anyHit, stats);
+    return traverseEscapeSequence(sequence_, ray, anyHit, stats, test_);
   }
   std::string name() const override { return stats_.name; }
   AccelStats stats() const override { return stats_; }
@@ -71,15 +71,16 @@ public:
 private:
   EscapeSequence sequence_;
   AccelStats stats_;
+  TriangleTest test_;
 };
 
 // The same kind of tree descended recursively (5 and 6); holds the caller's triangles.
 class RecursiveBvhAccelerator final : public CpuAccelerator {
 public:
-  RecursiveBvhAccelerator(std::span<const Triangle> tris, Bvh bvh, AccelStats stats)
-      : tris_(tris), bvh_(std::move(bvh)), stats_(std::move(stats)) {}
+  RecursiveBvhAccelerator(std::span<const Triangle> tris, Bvh bvh, AccelStats stats, TriangleTest test)
+      : tris_(tris), bvh_(std::move(bvh)), stats_(std::move(stats)), test_(test) {}
   Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
-    return traverseBvhRecursive(bvh_, tris_, ray, anyHit, stats);
+    return traverseBvhRecursive(bvh_, tris_, ray, anyHit, stats, test_);
   }
   std::string name() const override { return stats_.name; }
   AccelStats stats() const override { return stats_; }
@@ -88,16 +89,17 @@ private:
   std::span<const Triangle> tris_;
   Bvh bvh_;
   AccelStats stats_;
+  TriangleTest test_;
 };
 
 class BruteForce final : public CpuAccelerator {
 public:
-  explicit BruteForce(std::span<const Triangle> tris) : tris_(tris) {
+  BruteForce(std::span<const Triangle> tris, TriangleTest test) : tris_(tris), test_(test) {
     stats_.name = "brute-force";
     stats_.references = tris.size();
   }
   Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
-    return intersectBruteForce(tris_, ray, anyHit, stats);
+    return intersectBruteForce(tris_, ray, anyHit, stats, test_);
   }
   std::string name() const override { return stats_.name; }
   AccelStats stats() const override { return stats_; }
@@ -105,6 +107,7 @@ public:
 private:
   std::span<const Triangle> tris_;
   AccelStats stats_;
+  TriangleTest test_;
 };
 
 }  // namespace
@@ -118,18 +121,19 @@ SequenceBuild buildKayKajiyaSequence(std::span<const Triangle> tris, const KayKa
   return build;
 }
 
-std::unique_ptr<CpuAccelerator> makeSequenceAccelerator(SequenceBuild build) {
-  return std::make_unique<SequenceAccelerator>(std::move(build));
+std::unique_ptr<CpuAccelerator> makeSequenceAccelerator(SequenceBuild build, TriangleTest test) {
+  return std::make_unique<SequenceAccelerator>(std::move(build), test);
 }
 
-std::unique_ptr<CpuAccelerator> makeRecursiveBvhAccelerator(std::span<const Triangle> tris, Bvh bvh, AccelStats stats) {
-  return std::make_unique<RecursiveBvhAccelerator>(tris, std::move(bvh), std::move(stats));
+std::unique_ptr<CpuAccelerator> makeRecursiveBvhAccelerator(std::span<const Triangle> tris, Bvh bvh, AccelStats stats,
+                                                            TriangleTest test) {
+  return std::make_unique<RecursiveBvhAccelerator>(tris, std::move(bvh), std::move(stats), test);
 }
 
 std::unique_ptr<CpuAccelerator> makeCpuAccelerator(int number, std::span<const Triangle> tris,
                                                    const AccelBuildConfig& config) {
   info(number);  // throws for numbers outside Table 4
-  if (number == 0) return makeSequenceAccelerator(buildKayKajiyaSequence(tris, config.kayKajiya));
+  if (number == 0) return makeSequenceAccelerator(buildKayKajiyaSequence(tris, config.kayKajiya), config.triangleTest);
   if (number == 1 || number == 4 || number == 6 || number == 7)
     return makeGridFamilyCpuAccelerator(number, tris, config);
   if (number == 2 || number == 3) return makeKdCpuAccelerator(number, tris, config);
@@ -138,11 +142,11 @@ std::unique_ptr<CpuAccelerator> makeCpuAccelerator(int number, std::span<const T
   Bvh bvh = buildKayKajiya(tris, config.kayKajiya);
   AccelStats stats = bvhStats(5, bvh);
   stats.buildMs = millisecondsSince(start);
-  return makeRecursiveBvhAccelerator(tris, std::move(bvh), std::move(stats));
+  return makeRecursiveBvhAccelerator(tris, std::move(bvh), std::move(stats), config.triangleTest);
 }
 
-std::unique_ptr<CpuAccelerator> makeBruteForceAccelerator(std::span<const Triangle> tris) {
-  return std::make_unique<BruteForce>(tris);
+std::unique_ptr<CpuAccelerator> makeBruteForceAccelerator(std::span<const Triangle> tris, TriangleTest test) {
+  return std::make_unique<BruteForce>(tris, test);
 }
 
 std::string acceleratorName(int number) { return info(number).name; }

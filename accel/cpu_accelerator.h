@@ -24,6 +24,7 @@
 #include "accel/geometry.h"
 #include "accel/kay_kajiya_builder.h"
 #include "accel/traversal_stats.h"
+#include "accel/triangle_test.h"
 
 namespace passtrace {
 
@@ -45,6 +46,9 @@ struct AccelBuildConfig {
   float gridMultiplier = 1.0f;  // -g: scales the uniform grid's resolution
   int kdMinElements = 2;      // -e: fewest triangles for a kd-tree internal node
   int kdMaxDepth = 0;         // -d: kd-tree maximum depth; 0 = 8 + 1.3 log2 N
+  // --triangle-test: used by every traversal, CPU and GPU (not a build
+  // parameter, but every structure is made from this config).
+  TriangleTest triangleTest = TriangleTest::MollerTrumbore;
 };
 
 // The K/K tree flattened to its escape-index sequence, and its statistics
@@ -77,15 +81,16 @@ std::unique_ptr<CpuAccelerator> makeCpuAccelerator(int number, std::span<const T
 // The two forms every BVH runs in on the CPU: its escape-index sequence,
 // walked as the GPU walks it (accelerators 0 and 1), and the recursive descent
 // of its tree (5 and 6; holds `tris` as above).
-std::unique_ptr<CpuAccelerator> makeSequenceAccelerator(SequenceBuild build);
-std::unique_ptr<CpuAccelerator> makeRecursiveBvhAccelerator(std::span<const Triangle> tris, Bvh bvh, AccelStats stats);
+std::unique_ptr<CpuAccelerator> makeSequenceAccelerator(SequenceBuild build, TriangleTest test = TriangleTest::MollerTrumbore);
+std::unique_ptr<CpuAccelerator> makeRecursiveBvhAccelerator(std::span<const Triangle> tris, Bvh bvh, AccelStats stats,
+                                                            TriangleTest test = TriangleTest::MollerTrumbore);
 // Node, leaf, reference and depth counts of a BVH with one triangle per leaf,
 // and its memory as the thesis counts it (8 floats per box), under
 // acceleratorName(number). buildMs is left 0.
 AccelStats bvhStats(int number, const Bvh& bvh);
 
 // Tests every triangle in scene order; holds a span of tris as above.
-std::unique_ptr<CpuAccelerator> makeBruteForceAccelerator(std::span<const Triangle> tris);
+std::unique_ptr<CpuAccelerator> makeBruteForceAccelerator(std::span<const Triangle> tris, TriangleTest test = TriangleTest::MollerTrumbore);
 
 // Short names for 0-7 as listed above; throws std::invalid_argument otherwise.
 std::string acceleratorName(int number);

@@ -102,9 +102,19 @@ inline bool clipToBox(const glm::vec3& origin, const glm::vec3& invDir, const Aa
   return tNear <= tFar;
 }
 
+// The BVHs' box test is conservative (Ize, "Robust BVH Ray Traversal", JCGT
+// 2013, as in pbrt-v4): each slab t carries up to 3 roundings, so the exit t
+// is enlarged by 2 gamma(3) = 3 ulps of 1 before comparing. Without it a ray
+// that passes exactly through a box corner, such as a ray aimed at a mesh
+// vertex, can miss every box around the vertex and slip through a closed
+// mesh (tests/watertight_test.cpp found this).
+inline constexpr float kRobustExitScale = 1.0f + 3.0f * 0x1p-23f;
+
 inline bool intersectsBox(const glm::vec3& origin, const glm::vec3& invDir, const Aabb& box, float tBest) {
   float tNear, tFar;
-  return clipToBox(origin, invDir, box, tNear, tFar) && tFar >= 0.0f && tNear < tBest;
+  clipToBox(origin, invDir, box, tNear, tFar);
+  const float tExit = tFar * kRobustExitScale;
+  return tNear <= tExit && tExit >= 0.0f && tNear < tBest;
 }
 
 // Möller–Trumbore, two-sided. Updates `best` and returns true when the

@@ -30,7 +30,8 @@ GoldsmithSalmonConfig gsConfig(const AccelBuildConfig& config) {
 // 4: the uniform grid, 3D-DDA.
 class GridAccelerator final : public CpuAccelerator {
 public:
-  GridAccelerator(std::span<const Triangle> tris, const AccelBuildConfig& config) : tris_(tris) {
+  GridAccelerator(std::span<const Triangle> tris, const AccelBuildConfig& config)
+      : tris_(tris), test_(config.triangleTest) {
     const auto start = std::chrono::steady_clock::now();
     grid_ = buildUniformGrid(tris, GridConfig{config.gridMultiplier});
     stats_.buildMs = millisecondsSince(start);
@@ -45,7 +46,7 @@ public:
         tris.empty() ? 0.0 : double(stats_.nodes + stats_.references + stats_.leaves) / double(tris.size());
   }
   Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
-    return traverseGrid(grid_, tris_, ray, anyHit, stats);
+    return traverseGrid(grid_, tris_, ray, anyHit, stats, test_);
   }
   std::string name() const override { return stats_.name; }
   AccelStats stats() const override { return stats_; }
@@ -54,12 +55,13 @@ private:
   std::span<const Triangle> tris_;
   UniformGrid grid_;
   AccelStats stats_;
+  TriangleTest test_;
 };
 
 // 7: the octree, front to back.
 class OctreeAccelerator final : public CpuAccelerator {
 public:
-  explicit OctreeAccelerator(std::span<const Triangle> tris) : tris_(tris) {
+  OctreeAccelerator(std::span<const Triangle> tris, TriangleTest test) : tris_(tris), test_(test) {
     const auto start = std::chrono::steady_clock::now();
     octree_ = buildOctree(tris);
     stats_.buildMs = millisecondsSince(start);
@@ -71,7 +73,7 @@ public:
     stats_.floatsPerTriangle = octree_.floatsPerTriangle(tris.size());
   }
   Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
-    return traverseOctree(octree_, tris_, ray, anyHit, stats);
+    return traverseOctree(octree_, tris_, ray, anyHit, stats, test_);
   }
   std::string name() const override { return stats_.name; }
   AccelStats stats() const override { return stats_; }
@@ -80,6 +82,7 @@ private:
   std::span<const Triangle> tris_;
   Octree octree_;
   AccelStats stats_;
+  TriangleTest test_;
 };
 
 }  // namespace
@@ -87,16 +90,16 @@ private:
 std::unique_ptr<CpuAccelerator> makeGridFamilyCpuAccelerator(int number, std::span<const Triangle> tris,
                                                              const AccelBuildConfig& config) {
   switch (number) {
-    case 1: return makeSequenceAccelerator(buildGoldsmithSalmonSequence(tris, gsConfig(config)));
+    case 1: return makeSequenceAccelerator(buildGoldsmithSalmonSequence(tris, gsConfig(config)), config.triangleTest);
     case 4: return std::make_unique<GridAccelerator>(tris, config);
     case 6: {  // the same tree (same configuration), descended recursively
       const auto start = std::chrono::steady_clock::now();
       Bvh bvh = buildGoldsmithSalmon(tris, gsConfig(config));
       AccelStats stats = bvhStats(6, bvh);
       stats.buildMs = millisecondsSince(start);
-      return makeRecursiveBvhAccelerator(tris, std::move(bvh), std::move(stats));
+      return makeRecursiveBvhAccelerator(tris, std::move(bvh), std::move(stats), config.triangleTest);
     }
-    case 7: return std::make_unique<OctreeAccelerator>(tris);
+    case 7: return std::make_unique<OctreeAccelerator>(tris, config.triangleTest);
     default:
       throw std::invalid_argument("makeGridFamilyCpuAccelerator: accelerator " + std::to_string(number) +
                                   " is not one of 1, 4, 6, 7");

@@ -93,7 +93,7 @@ void gridStreamTestEntry(const GridStreamData& d, const Ray& ray, bool anyHit, G
   ++c.stats.triangleTests;
   const uint32_t t = unpackIndex(id);
   const Triangle tri{glm::vec3(d.triangles[3 * t]), glm::vec3(d.triangles[3 * t + 1]), glm::vec3(d.triangles[3 * t + 2])};
-  const bool found = intersectTriangle(ray.origin, ray.direction, tri, t, c.best);
+  const bool found = intersectTriangle(ray.origin, ray.direction, tri, t, c.best, d.triangleTest);
   c.done = found && anyHit;
   c.mode = packIndex(entry + 1);
 }

@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "accel/geometry.h"
+#include "accel/triangle_test.h"
 #include "accel/traversal_stats.h"
 
 namespace passtrace {
@@ -19,6 +20,7 @@ struct GridStreamData {
   glm::vec3 gridMin{0.0f}, cellSize{1.0f}, invCellSize{1.0f};
   glm::ivec3 resolution{1};
   std::span<const glm::vec4> cells, lists, triangles;
+  TriangleTest triangleTest = TriangleTest::MollerTrumbore;  // as the kernels are compiled
 };
 
 // The stream view of a grid spanning `bounds` with `resolution` cells. A flat

@@ -3,7 +3,7 @@
 namespace passtrace {
 
 Hit traverseGrid(const UniformGrid& grid, std::span<const Triangle> tris, const Ray& ray, bool anyHit,
-                 RayStats* stats) {
+                 RayStats* stats, TriangleTest test) {
   Hit best{ray.tMax};
   if (grid.cellCount() == 0) return best;
   const glm::vec3 invDir = safeInverse(ray.direction);
@@ -32,7 +32,7 @@ Hit traverseGrid(const UniformGrid& grid, std::span<const Triangle> tris, const 
     for (uint32_t r = grid.cellStart[c]; r < grid.cellStart[c + 1]; ++r) {
       const uint32_t id = grid.references[r];
       ++tests;
-      if (intersectTriangle(ray.origin, ray.direction, tris[id], id, best) && anyHit) {
+      if (intersectTriangle(ray.origin, ray.direction, tris[id], id, best, test) && anyHit) {
         stop = true;
         break;
       }

@@ -6,6 +6,7 @@
 #include <span>
 
 #include "accel/geometry.h"
+#include "accel/triangle_test.h"
 #include "accel/traversal_stats.h"
 #include "accel/uniform_grid.h"
 
@@ -31,8 +32,9 @@ inline bool clipRayToBox(const glm::vec3& origin, const glm::vec3& invDir, const
 // coordinate at every step rather than accumulated from delta, so it never
 // drifts. Triangles listed in several cells are tested once per cell (no
 // mailboxing, as on the GPU). stats, when given, is added to: one step per
-// cell visited, one test per triangle test.
+// cell visited, one test per triangle test. `test` picks the ray/triangle
+// test (accel/triangle_test.h).
 Hit traverseGrid(const UniformGrid& grid, std::span<const Triangle> tris, const Ray& ray, bool anyHit,
-                 RayStats* stats = nullptr);
+                 RayStats* stats = nullptr, TriangleTest test = TriangleTest::MollerTrumbore);
 
 }  // namespace passtrace

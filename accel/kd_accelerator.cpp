@@ -14,7 +14,8 @@ namespace {
 
 class KdAccelerator final : public CpuAccelerator {
 public:
-  KdAccelerator(int number, std::span<const Triangle> tris, const AccelBuildConfig& config) : tris_(tris) {
+  KdAccelerator(int number, std::span<const Triangle> tris, const AccelBuildConfig& config)
+      : tris_(tris), test_(config.triangleTest) {
     const auto start = std::chrono::steady_clock::now();
     tree_ = number == 2 ? buildKdTree(tris, kdConfigFor(config)) : buildKdTreePbrt(tris, kdPbrtConfigFor(config));
     stats_.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -26,7 +27,7 @@ public:
     stats_.depth = tree_.depth();
   }
   Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
-    return traverseKdTree(tree_, tris_, ray, anyHit, stats);
+    return traverseKdTree(tree_, tris_, ray, anyHit, stats, test_);
   }
   std::string name() const override { return stats_.name; }
   AccelStats stats() const override { return stats_; }
@@ -35,6 +36,7 @@ private:
   std::span<const Triangle> tris_;
   KdTree tree_;
   AccelStats stats_;
+  TriangleTest test_;
 };
 
 }  // namespace

@@ -46,7 +46,7 @@ void step(const KdStreamData& d, const Ray& ray, const glm::vec3& invDir, bool a
       const uint32_t t = unpackIndex(id);
       const Triangle tri{glm::vec3(d.triangles[3 * t]), glm::vec3(d.triangles[3 * t + 1]),
                          glm::vec3(d.triangles[3 * t + 2])};
-      const bool found = intersectTriangle(ray.origin, ray.direction, tri, t, c.best);
+      const bool found = intersectTriangle(ray.origin, ray.direction, tri, t, c.best, d.triangleTest);
       c.done = found && anyHit;
       c.mode = packIndex(entry + 1);
     }

@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "accel/geometry.h"
+#include "accel/triangle_test.h"
 #include "accel/traversal_stats.h"
 
 namespace passtrace {
@@ -22,6 +23,7 @@ struct KdStreamData {
   KdStreamVariant variant = KdStreamVariant::Restart;
   Aabb sceneBox;
   std::span<const glm::vec4> nodes, lists, triangles;
+  TriangleTest triangleTest = TriangleTest::MollerTrumbore;  // as the kernel is compiled
 };
 
 // A ray's traversal state between passes (the kernel's state and aux surfaces).

@@ -41,7 +41,8 @@ private:
 
 }  // namespace
 
-Hit traverseKdTree(const KdTree& tree, std::span<const Triangle> tris, const Ray& ray, bool anyHit, RayStats* stats) {
+Hit traverseKdTree(const KdTree& tree, std::span<const Triangle> tris, const Ray& ray, bool anyHit, RayStats* stats,
+                   TriangleTest test) {
   Hit best;
   best.t = ray.tMax;
   if (tree.nodes.empty()) return best;
@@ -92,7 +93,7 @@ Hit traverseKdTree(const KdTree& tree, std::span<const Triangle> tris, const Ray
     for (uint32_t r = 0; r < node.refCount; ++r) {
       const uint32_t id = tree.references[node.firstRef + r];
       ++triangleTests;
-      if (intersectTriangle(ray.origin, ray.direction, tris[id], id, best) && anyHit) goto done;
+      if (intersectTriangle(ray.origin, ray.direction, tris[id], id, best, test) && anyHit) goto done;
     }
     for (;;) {
       if (stack.empty()) goto done;

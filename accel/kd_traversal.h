@@ -21,17 +21,19 @@
 //
 // Starts from best = Hit{t = ray.tMax}; hits at or beyond tMax are ignored.
 // stats, when given, is added to: one step per node visited (internal or
-// leaf) and one triangle test per reference tested.
+// leaf) and one triangle test per reference tested. `test` picks the
+// ray/triangle test (accel/triangle_test.h).
 
 #include <span>
 
 #include "accel/geometry.h"
+#include "accel/triangle_test.h"
 #include "accel/kd_tree.h"
 #include "accel/traversal_stats.h"
 
 namespace passtrace {
 
 Hit traverseKdTree(const KdTree& tree, std::span<const Triangle> tris, const Ray& ray, bool anyHit,
-                   RayStats* stats = nullptr);
+                   RayStats* stats = nullptr, TriangleTest test = TriangleTest::MollerTrumbore);
 
 }  // namespace passtrace

@@ -133,10 +133,14 @@ KdTree buildKdTreePbrt(std::span<const Triangle> tris, const KdBuildConfig& conf
     tree.nodes.push_back(node);
 
     WorkItem below, above;
-    for (size_t i = 0; i < bestOffset; ++i)
-      if (edges[i].start) below.prims.push_back(edges[i].prim);
-    for (size_t i = bestOffset + 1; i < 2 * n; ++i)
-      if (!edges[i].start) above.prims.push_back(edges[i].prim);
+    // pbrt's classification, except that a triangle whose bounds touch the
+    // plane (a vertex on it) goes to both sides: a ray through that vertex
+    // may be rounded into either child, and with the triangle on one side
+    // only it slipped through closed meshes (tests/watertight_test.cpp).
+    for (size_t i = 0; i < 2 * n; ++i)
+      if (edges[i].start && (i < bestOffset || edges[i].t == tSplit)) below.prims.push_back(edges[i].prim);
+    for (size_t i = 0; i < 2 * n; ++i)
+      if (!edges[i].start && (i > bestOffset || edges[i].t == tSplit)) above.prims.push_back(edges[i].prim);
     below.voxel = above.voxel = item.voxel;
     below.voxel.max[bestAxis] = above.voxel.min[bestAxis] = tSplit;
     below.depthLeft = above.depthLeft = item.depthLeft - 1;

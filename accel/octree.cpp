@@ -121,7 +121,7 @@ Octree buildOctree(std::span<const Triangle> tris, const OctreeConfig& config) {
 }
 
 Hit traverseOctree(const Octree& octree, std::span<const Triangle> tris, const Ray& ray, bool anyHit,
-                   RayStats* stats) {
+                   RayStats* stats, TriangleTest test) {
   Hit best{ray.tMax};
   if (octree.nodes.empty()) return best;
   const glm::vec3 invDir = safeInverse(ray.direction);
@@ -145,7 +145,7 @@ Hit traverseOctree(const Octree& octree, std::span<const Triangle> tris, const R
       for (uint32_t r = node.firstRef; r < node.firstRef + node.refCount; ++r) {
         const uint32_t id = octree.references[r];
         ++tests;
-        found = intersectTriangle(ray.origin, ray.direction, tris[id], id, best) || found;
+        found = intersectTriangle(ray.origin, ray.direction, tris[id], id, best, test) || found;
         if (found && anyHit) break;
       }
       if ((found && anyHit) || best.t <= entry.tFar) break;

@@ -22,7 +22,8 @@ class KdStreamMirror final : public CpuAccelerator {
  public:
   KdStreamMirror(KdStreamVariant variant, std::span<const Triangle> tris, const AccelBuildConfig& config)
       : triangles_(triangleVertexTexels(tris)), build_(buildKdStream(variant, tris, config)) {
-    data_ = KdStreamData{variant, build_.sceneBox, build_.texels.nodes, build_.texels.lists, triangles_};
+    data_ = KdStreamData{variant, build_.sceneBox, build_.texels.nodes, build_.texels.lists, triangles_,
+                         config.triangleTest};
   }
   Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
     return traverseKdStream(data_, ray, anyHit, stats);
@@ -42,6 +43,7 @@ class GridStreamMirror final : public CpuAccelerator {
       : triangles_(triangleVertexTexels(tris)), build_(buildGridStream(tris, config)) {
     build_.stats.name = "grid-stream";
     data_ = makeGridStreamData(build_.bounds, build_.resolution, build_.texels.cells, build_.texels.lists, triangles_);
+    data_.triangleTest = config.triangleTest;
   }
   Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
     return traverseGridStream(data_, ray, anyHit, stats);

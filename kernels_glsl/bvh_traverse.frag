@@ -14,7 +14,7 @@ uniform sampler2D uOrigin;
 uniform sampler2D uDirection;
 uniform sampler2D uState;      // packed next index, steps, triangle tests, active
 uniform sampler2D uHit;
-uniform sampler2D uSequence;   // the escape-index sequence
+uniform ConstStream uSequence;  // the escape-index sequence
 uniform uint uSequenceSize;    // texels in the sequence: the end of traversal
 uniform int uLoopLimit;        // traversal steps per pass (tracy's -l)
 
@@ -28,19 +28,18 @@ void main() {
   vec4 hit = readElement(uHit);
   bool anyHit = origin.w == RAY_SHADOW;
   vec3 invDir = safeInverse(direction.xyz);
-  uint widthLog2 = widthLog2Of(uSequence);
 
   uint index = unpackIndex(state.x);
   float steps = state.y, tests = state.z;
   for (int i = 0; i < uLoopLimit && index < uSequenceSize; ++i) {
-    vec4 first = fetchTexel(uSequence, widthLog2, index);
-    vec4 second = fetchTexel(uSequence, widthLog2, index + 1u);
+    vec4 first = fetchTexel(uSequence, index);
+    vec4 second = fetchTexel(uSequence, index + 1u);
     steps += 1.0;
     if (first.w >= 0.0) {
       bool enter = intersectsBox(origin.xyz, invDir, first.xyz, second.xyz, hit.x);
       index = enter ? index + 2u : unpackIndex(first.w);
     } else {
-      vec4 third = fetchTexel(uSequence, widthLog2, index + 2u);
+      vec4 third = fetchTexel(uSequence, index + 2u);
       tests += 1.0;
       bool found = intersectTriangle(origin.xyz, direction.xyz, first.xyz, second.xyz, third.xyz, second.w, hit);
       index = (found && anyHit) ? uSequenceSize : index + 3u;

@@ -14,8 +14,8 @@ uniform sampler2D uDirection;
 uniform sampler2D uState;
 uniform sampler2D uHit;
 uniform sampler2D uAux;
-uniform sampler2D uLists;
-uniform sampler2D uTriangles;
+uniform ConstStream uLists;
+uniform ConstStream uTriangles;
 
 layout(location = 0) out vec4 outState;
 layout(location = 1) out vec4 outHit;
@@ -25,7 +25,7 @@ void main() {
   vec4 aux = readElement(uAux);
   if (aux.w < 0.0) discard;
   GridRay ray = loadGridRay(readElement(uOrigin), readElement(uDirection), readElement(uState), aux, readElement(uHit));
-  testNextEntry(ray, uLists, widthLog2Of(uLists), uTriangles, widthLog2Of(uTriangles));
+  testNextEntry(ray, uLists, uTriangles);
   outState = vec4(packIndex(ray.done ? 0u : linearCell(ray.cell)), ray.steps, ray.tests, ray.done ? 0.0 : 1.0);
   outHit = ray.hit;
   outAux = vec4(ray.tNext, ray.mode);

@@ -52,23 +52,23 @@ void advance(inout GridRay ray) {
 }
 
 // Looks up the cell's list: starts it, or moves on if the cell is empty.
-void visitCell(inout GridRay ray, sampler2D cells, uint cellsLog2) {
+void visitCell(inout GridRay ray, ConstStream cells) {
   ray.steps += 1.0;
-  float start = fetchScalar(cells, cellsLog2, linearCell(ray.cell));
+  float start = fetchScalar(cells, linearCell(ray.cell));
   if (start >= 0.0) ray.mode = start;
   else advance(ray);
 }
 
 // Tests the next listed triangle, or moves on at the end of the list.
-void testNextEntry(inout GridRay ray, sampler2D lists, uint listsLog2, sampler2D triangles, uint trianglesLog2) {
+void testNextEntry(inout GridRay ray, ConstStream lists, ConstStream triangles) {
   ray.steps += 1.0;
   uint entry = unpackIndex(ray.mode);
-  float id = fetchScalar(lists, listsLog2, entry);
+  float id = fetchScalar(lists, entry);
   if (id < 0.0) {
     advance(ray);
   } else {
     ray.tests += 1.0;
-    bool found = testListedTriangle(triangles, trianglesLog2, id, ray.origin, ray.direction, ray.hit);
+    bool found = testListedTriangle(triangles, id, ray.origin, ray.direction, ray.hit);
     ray.done = found && ray.anyHit;
     ray.mode = packIndex(entry + 1u);
   }

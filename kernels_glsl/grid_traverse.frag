@@ -14,9 +14,9 @@ uniform sampler2D uDirection;
 uniform sampler2D uState;
 uniform sampler2D uHit;
 uniform sampler2D uAux;
-uniform sampler2D uCells;
-uniform sampler2D uLists;
-uniform sampler2D uTriangles;
+uniform ConstStream uCells;
+uniform ConstStream uLists;
+uniform ConstStream uTriangles;
 uniform int uLoopLimit;
 
 layout(location = 0) out vec4 outState;
@@ -26,10 +26,9 @@ layout(location = 2) out vec4 outAux;
 void main() {
   GridRay ray = loadGridRay(readElement(uOrigin), readElement(uDirection), readElement(uState), readElement(uAux),
                             readElement(uHit));
-  uint cellsLog2 = widthLog2Of(uCells), listsLog2 = widthLog2Of(uLists), trianglesLog2 = widthLog2Of(uTriangles);
   for (int i = 0; i < uLoopLimit && !ray.done; ++i) {
-    if (ray.mode < 0.0) visitCell(ray, uCells, cellsLog2);
-    else testNextEntry(ray, uLists, listsLog2, uTriangles, trianglesLog2);
+    if (ray.mode < 0.0) visitCell(ray, uCells);
+    else testNextEntry(ray, uLists, uTriangles);
   }
   outState = vec4(packIndex(ray.done ? 0u : linearCell(ray.cell)), ray.steps, ray.tests, ray.done ? 0.0 : 1.0);
   outHit = ray.hit;

@@ -1,6 +1,9 @@
 // The slab test and the Möller–Trumbore test, operation for operation as in
 // accel/geometry.h. `precise` forbids the compiler from fusing or reordering
 // them, so GPU and CPU results agree wherever the driver keeps IEEE order.
+// With WATERTIGHT_TRIANGLES defined (--triangle-test watertight),
+// intersectTriangle runs the watertight test instead.
+#include "watertight_triangle.glsl"
 
 vec3 safeInverse(vec3 d) {
   const float tiny = 1e-20;
@@ -25,14 +28,19 @@ bool clipToBox(vec3 origin, vec3 invDir, vec3 lo, vec3 hi, out float tNear, out 
 }
 
 // Does the ray enter [lo, hi] before tBest, and not entirely behind it?
+// Conservative: the exit t is enlarged by 3 ulps of 1 (kRobustExitScale in
+// accel/geometry.h, 1 + 3 * 2^-23) so rounding never loses a box the ray
+// touches at a corner.
 bool intersectsBox(vec3 origin, vec3 invDir, vec3 lo, vec3 hi, float tBest) {
   float tNear, tFar;
-  return clipToBox(origin, invDir, lo, hi, tNear, tFar) && tFar >= 0.0 && tNear < tBest;
+  clipToBox(origin, invDir, lo, hi, tNear, tFar);
+  precise float tExit = tFar * 1.00000035762786865234375;
+  return tNear <= tExit && tExit >= 0.0 && tNear < tBest;
 }
 
 // Two-sided Möller–Trumbore. `hit` is (t, u, v, packed id); it is replaced
 // when the triangle is hit in front of the origin and strictly before hit.x.
-bool intersectTriangle(vec3 origin, vec3 dir, vec3 a, vec3 b, vec3 c, float packedId, inout vec4 hit) {
+bool intersectTriangleMollerTrumbore(vec3 origin, vec3 dir, vec3 a, vec3 b, vec3 c, float packedId, inout vec4 hit) {
   precise vec3 e1 = b - a;
   precise vec3 e2 = c - a;
   precise vec3 p = cross(dir, e2);
@@ -47,4 +55,13 @@ bool intersectTriangle(vec3 origin, vec3 dir, vec3 a, vec3 b, vec3 c, float pack
   if (!(u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 0.0 && t < hit.x)) return false;
   hit = vec4(t, u, v, packedId);
   return true;
+}
+
+// The test every kernel calls, chosen when the kernel is compiled.
+bool intersectTriangle(vec3 origin, vec3 dir, vec3 a, vec3 b, vec3 c, float packedId, inout vec4 hit) {
+#ifdef WATERTIGHT_TRIANGLES
+  return intersectTriangleWatertight(origin, dir, a, b, c, packedId, hit);
+#else
+  return intersectTriangleMollerTrumbore(origin, dir, a, b, c, packedId, hit);
+#endif
 }

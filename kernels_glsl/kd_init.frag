@@ -20,7 +20,9 @@ void main() {
   bool inside = clipToBox(origin.xyz, safeInverse(direction.xyz), uSceneMin, uSceneMax, tNear, tFar);
   float tMin = max(tNear, 0.0);
   float tMax = min(tFar, direction.w);
-  bool hasWork = inside && tMin <= tMax;
+  // An empty scene's box (min > max, infinite) would clip to everything.
+  bool sceneEmpty = any(greaterThan(uSceneMin, uSceneMax));
+  bool hasWork = inside && tMin <= tMax && !sceneEmpty;
   outState = vec4(packIndex(0u), 0.0, 0.0, hasWork ? 1.0 : 0.0);
   outAux = vec4(-1.0, tMin, tMax, tMax);
 }

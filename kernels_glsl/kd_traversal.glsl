@@ -51,17 +51,16 @@ void leafFinished(inout KdRay ray, vec4 leaf) {
 #endif
 }
 
-void kdStep(inout KdRay ray, sampler2D nodes, uint nodesLog2, sampler2D lists, uint listsLog2,
-            sampler2D triangles, uint trianglesLog2) {
+void kdStep(inout KdRay ray, ConstStream nodes, ConstStream lists, ConstStream triangles) {
   ray.steps += 1.0;
   if (ray.mode >= 0.0) {
     uint entry = unpackIndex(ray.mode);
-    float id = fetchScalar(lists, listsLog2, entry);
+    float id = fetchScalar(lists, entry);
     if (id < 0.0) {
-      leafFinished(ray, fetchTexel(nodes, nodesLog2, NODE_STRIDE * ray.node));
+      leafFinished(ray, fetchTexel(nodes, NODE_STRIDE * ray.node));
     } else {
       ray.tests += 1.0;
-      bool found = testListedTriangle(triangles, trianglesLog2, id, ray.origin, ray.direction, ray.hit);
+      bool found = testListedTriangle(triangles, id, ray.origin, ray.direction, ray.hit);
       ray.done = found && ray.anyHit;
       ray.mode = packIndex(entry + 1u);
     }
@@ -69,22 +68,22 @@ void kdStep(inout KdRay ray, sampler2D nodes, uint nodesLog2, sampler2D lists, u
   }
 #ifdef KD_BACKTRACK
   if (ray.mode == MODE_UP) {
-    vec3 lo = fetchTexel(nodes, nodesLog2, NODE_STRIDE * ray.node + 1u).xyz;
-    vec3 hi = fetchTexel(nodes, nodesLog2, NODE_STRIDE * ray.node + 2u).xyz;
+    vec3 lo = fetchTexel(nodes, NODE_STRIDE * ray.node + 1u).xyz;
+    vec3 hi = fetchTexel(nodes, NODE_STRIDE * ray.node + 2u).xyz;
     float tNear, tFar;
     clipToBox(ray.origin, ray.invDir, lo, hi, tNear, tFar);
     if (tFar > ray.tMin) {
       ray.mode = MODE_DOWN;
       ray.tMax = min(tFar, ray.sceneMax);
     } else {
-      float parent = fetchTexel(nodes, nodesLog2, NODE_STRIDE * ray.node).z;
+      float parent = fetchTexel(nodes, NODE_STRIDE * ray.node).z;
       if (parent < 0.0) ray.done = true;
       else ray.node = unpackIndex(parent);
     }
     return;
   }
 #endif
-  vec4 node = fetchTexel(nodes, nodesLog2, NODE_STRIDE * ray.node);
+  vec4 node = fetchTexel(nodes, NODE_STRIDE * ray.node);
   if (node.w < -1.5) {  // internal: w = -(axis + 2)
     int axis = int(-node.w) - 2;
     float split = node.y;

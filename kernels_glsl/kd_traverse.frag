@@ -13,9 +13,9 @@ uniform sampler2D uDirection;
 uniform sampler2D uState;
 uniform sampler2D uHit;
 uniform sampler2D uAux;
-uniform sampler2D uNodes;
-uniform sampler2D uLists;
-uniform sampler2D uTriangles;
+uniform ConstStream uNodes;
+uniform ConstStream uLists;
+uniform ConstStream uTriangles;
 uniform int uLoopLimit;
 
 layout(location = 0) out vec4 outState;
@@ -41,9 +41,8 @@ void main() {
   ray.sceneMax = aux.w;
   ray.hit = readElement(uHit);
   ray.done = false;
-  uint nodesLog2 = widthLog2Of(uNodes), listsLog2 = widthLog2Of(uLists), trianglesLog2 = widthLog2Of(uTriangles);
   for (int i = 0; i < uLoopLimit && !ray.done; ++i)
-    kdStep(ray, uNodes, nodesLog2, uLists, listsLog2, uTriangles, trianglesLog2);
+    kdStep(ray, uNodes, uLists, uTriangles);
   outState = vec4(packIndex(ray.node), ray.steps, ray.tests, ray.done ? 0.0 : 1.0);
   outHit = ray.hit;
   outAux = vec4(ray.mode, ray.tMin, ray.tMax, ray.sceneMax);

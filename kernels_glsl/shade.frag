@@ -17,8 +17,8 @@ uniform sampler2D uHit;
 uniform sampler2D uColor;
 uniform sampler2D uThroughput;
 uniform sampler2D uPending;
-uniform sampler2D uTriangles;  // 4 texels per triangle: (n0, material) n1 n2 (geometric normal)
-uniform sampler2D uMaterials;  // 2 texels per material: diffuse, mirror reflectance
+uniform ConstStream uTriangles;  // 4 texels per triangle: (n0, material) n1 n2 (geometric normal)
+uniform ConstStream uMaterials;  // 2 texels per material: diffuse, mirror reflectance
 uniform vec3 uLightPosition;
 uniform vec3 uLightColor;
 uniform vec3 uBackground;
@@ -58,15 +58,13 @@ void main() {
       color.rgb += throughput.rgb * uBackground;
     } else {
       uint triangle = unpackIndex(hit.w);
-      uint trianglesLog2 = widthLog2Of(uTriangles);
-      vec4 n0 = fetchTexel(uTriangles, trianglesLog2, 4u * triangle);
-      vec3 n1 = fetchTexel(uTriangles, trianglesLog2, 4u * triangle + 1u).xyz;
-      vec3 n2 = fetchTexel(uTriangles, trianglesLog2, 4u * triangle + 2u).xyz;
-      vec3 geometric = fetchTexel(uTriangles, trianglesLog2, 4u * triangle + 3u).xyz;
+      vec4 n0 = fetchTexel(uTriangles, 4u * triangle);
+      vec3 n1 = fetchTexel(uTriangles, 4u * triangle + 1u).xyz;
+      vec3 n2 = fetchTexel(uTriangles, 4u * triangle + 2u).xyz;
+      vec3 geometric = fetchTexel(uTriangles, 4u * triangle + 3u).xyz;
       uint material = unpackIndex(n0.w);
-      uint materialsLog2 = widthLog2Of(uMaterials);
-      vec3 diffuse = fetchTexel(uMaterials, materialsLog2, 2u * material).rgb;
-      vec3 mirror = fetchTexel(uMaterials, materialsLog2, 2u * material + 1u).rgb;
+      vec3 diffuse = fetchTexel(uMaterials, 2u * material).rgb;
+      vec3 mirror = fetchTexel(uMaterials, 2u * material + 1u).rgb;
 
       vec3 position = origin.xyz + hit.x * direction.xyz;
       // Both normals face the incoming ray: triangles are two-sided.

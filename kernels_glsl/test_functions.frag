@@ -7,7 +7,7 @@
 #include "texel_address.glsl"
 #include "intersect.glsl"
 
-uniform sampler2D uData;
+uniform ConstStream uData;
 uniform sampler2D uIn0;
 uniform sampler2D uIn1;
 uniform sampler2D uIn2;
@@ -20,7 +20,7 @@ layout(location = 0) out vec4 outResult;
 void main() {
 #if defined(TEST_FETCH)
   uint index = uint(gl_FragCoord.y) * uint(uWidth) + uint(gl_FragCoord.x);
-  outResult = fetchTexel(uData, widthLog2Of(uData), index);
+  outResult = fetchTexel(uData, index);
 #elif defined(TEST_SLAB)
   vec4 hi = readElement(uIn3);
   bool hit = intersectsBox(readElement(uIn0).xyz, safeInverse(readElement(uIn1).xyz), readElement(uIn2).xyz, hi.xyz, hi.w);

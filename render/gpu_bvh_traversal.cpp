@@ -5,14 +5,14 @@
 
 namespace passtrace {
 
-GpuBvhTraversal::GpuBvhTraversal(const EscapeSequence& sequence, AccelStats stats, int loopLimit)
-    : sequence_(sequence.texels, "the BVH escape-index sequence"),
-      kernel_("bvh_traverse", "bvh_traverse.frag"),
+GpuBvhTraversal::GpuBvhTraversal(const EscapeSequence& sequence, AccelStats stats, const GpuTraversalConfig& config)
+    : sequence_(sequence.texels, "the BVH escape-index sequence", config.maxPageTexels),
+      kernel_("bvh_traverse", "bvh_traverse.frag", StreamKernel::Depth::Test, {streamPagesDefine({&sequence_}), triangleTestDefine(config.build.triangleTest)}),
       stats_(std::move(stats)),
-      loopLimit_(loopLimit) {
+      loopLimit_(config.loopLimit) {
   kernel_.bindInput("uSequence", sequence_);
   kernel_.set("uSequenceSize", static_cast<uint32_t>(sequence.texels.size()));
-  kernel_.set("uLoopLimit", loopLimit);
+  kernel_.set("uLoopLimit", loopLimit_);
 }
 
 uint64_t GpuBvhTraversal::trace(InOutStream& rays, uint64_t active, const std::function<uint64_t()>& retire) {

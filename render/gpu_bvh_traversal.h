@@ -11,7 +11,7 @@ namespace passtrace {
 
 class GpuBvhTraversal final : public GpuTraversal {
  public:
-  GpuBvhTraversal(const EscapeSequence& sequence, AccelStats stats, int loopLimit);
+  GpuBvhTraversal(const EscapeSequence& sequence, AccelStats stats, const GpuTraversalConfig& config);
   uint64_t trace(InOutStream& rays, uint64_t active, const std::function<uint64_t()>& retire) override;
   AccelStats stats() const override { return stats_; }
 

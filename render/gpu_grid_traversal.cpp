@@ -8,18 +8,20 @@ namespace passtrace {
 
 GpuGridTraversal::GpuGridTraversal(const GridStreamData& grid, const std::vector<glm::vec4>& cells,
                                    const std::vector<glm::vec4>& lists, const std::vector<glm::vec4>& triangleTexels,
-                                   uint64_t maxStepsPerRay, AccelStats stats, int loopLimit, GridKernels kernels)
-    : cells_(cells, "grid cells"),
-      lists_(lists, "grid triangle lists"),
-      triangles_(triangleTexels, "triangles"),
+                                   uint64_t maxStepsPerRay, AccelStats stats, const GpuTraversalConfig& config)
+    : cells_(cells, "grid cells", config.maxPageTexels),
+      lists_(lists, "grid triangle lists", config.maxPageTexels),
+      triangles_(triangleTexels, "triangles", config.maxPageTexels),
       init_("grid_init", "grid_init.frag"),
-      merged_("grid_traverse", "grid_traverse.frag"),
-      step_("grid_split_step", "grid_split_step.frag"),
-      intersect_("grid_split_intersect", "grid_split_intersect.frag"),
+      merged_("grid_traverse", "grid_traverse.frag", StreamKernel::Depth::Test,
+              {streamPagesDefine({&cells_, &lists_, &triangles_}), triangleTestDefine(config.build.triangleTest)}),
+      step_("grid_split_step", "grid_split_step.frag", StreamKernel::Depth::Test, {streamPagesDefine({&cells_})}),
+      intersect_("grid_split_intersect", "grid_split_intersect.frag", StreamKernel::Depth::Test,
+                 {streamPagesDefine({&lists_, &triangles_}), triangleTestDefine(config.build.triangleTest)}),
       stats_(std::move(stats)),
       maxStepsPerRay_(maxStepsPerRay),
-      loopLimit_(loopLimit),
-      kernels_(kernels) {
+      loopLimit_(config.loopLimit),
+      kernels_(config.gridKernels) {
   for (StreamKernel* k : {&init_, &merged_, &step_, &intersect_}) {
     k->set("uGridMin", grid.gridMin);
     k->set("uCellSize", grid.cellSize);
@@ -29,7 +31,7 @@ GpuGridTraversal::GpuGridTraversal(const GridStreamData& grid, const std::vector
     k->bindInput("uLists", lists_);
     k->bindInput("uTriangles", triangles_);
   }
-  merged_.set("uLoopLimit", loopLimit);
+  merged_.set("uLoopLimit", loopLimit_);
 }
 
 uint64_t GpuGridTraversal::trace(InOutStream& rays, uint64_t active, const std::function<uint64_t()>& retire) {

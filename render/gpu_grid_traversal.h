@@ -18,7 +18,7 @@ class GpuGridTraversal final : public GpuTraversal {
   // `grid` gives the geometry (its spans are not used); the texels are uploaded.
   GpuGridTraversal(const GridStreamData& grid, const std::vector<glm::vec4>& cells,
                    const std::vector<glm::vec4>& lists, const std::vector<glm::vec4>& triangleTexels,
-                   uint64_t maxStepsPerRay, AccelStats stats, int loopLimit, GridKernels kernels);
+                   uint64_t maxStepsPerRay, AccelStats stats, const GpuTraversalConfig& config);
   uint64_t trace(InOutStream& rays, uint64_t active, const std::function<uint64_t()>& retire) override;
   AccelStats stats() const override { return stats_; }
 

@@ -7,30 +7,31 @@
 namespace passtrace {
 namespace {
 
-std::vector<std::string> defines(KdStreamVariant variant) {
-  if (variant == KdStreamVariant::Backtrack) return {"KD_BACKTRACK"};
-  return {};
+std::vector<std::string> defines(KdStreamVariant variant, std::string pages, TriangleTest test) {
+  if (variant == KdStreamVariant::Backtrack) return {"KD_BACKTRACK", pages, triangleTestDefine(test)};
+  return {pages, triangleTestDefine(test)};
 }
 
 }  // namespace
 
 GpuKdTraversal::GpuKdTraversal(KdStreamVariant variant, const KdTexels& texels, const Aabb& sceneBox,
                                const std::vector<glm::vec4>& triangleTexels, uint64_t maxStepsPerRay, AccelStats stats,
-                               int loopLimit)
-    : nodes_(texels.nodes, "kd-tree nodes"),
-      lists_(texels.lists, "kd-tree triangle lists"),
-      triangles_(triangleTexels, "triangles"),
+                               const GpuTraversalConfig& config)
+    : nodes_(texels.nodes, "kd-tree nodes", config.maxPageTexels),
+      lists_(texels.lists, "kd-tree triangle lists", config.maxPageTexels),
+      triangles_(triangleTexels, "triangles", config.maxPageTexels),
       init_("kd_init", "kd_init.frag"),
       traverse_(variant == KdStreamVariant::Backtrack ? "kd_backtrack" : "kd_restart", "kd_traverse.frag",
-                StreamKernel::Depth::Test, defines(variant)),
+                StreamKernel::Depth::Test, defines(variant, streamPagesDefine({&nodes_, &lists_, &triangles_}),
+                                                           config.build.triangleTest)),
       stats_(std::move(stats)),
-      maxPasses_(maxStepsPerRay / uint64_t(loopLimit) + 2) {
+      maxPasses_(maxStepsPerRay / uint64_t(config.loopLimit) + 2) {
   init_.set("uSceneMin", sceneBox.min);
   init_.set("uSceneMax", sceneBox.max);
   traverse_.bindInput("uNodes", nodes_);
   traverse_.bindInput("uLists", lists_);
   traverse_.bindInput("uTriangles", triangles_);
-  traverse_.set("uLoopLimit", loopLimit);
+  traverse_.set("uLoopLimit", config.loopLimit);
 }
 
 uint64_t GpuKdTraversal::trace(InOutStream& rays, uint64_t active, const std::function<uint64_t()>& retire) {

@@ -17,7 +17,7 @@ class GpuKdTraversal final : public GpuTraversal {
  public:
   GpuKdTraversal(KdStreamVariant variant, const KdTexels& texels, const Aabb& sceneBox,
                  const std::vector<glm::vec4>& triangleTexels, uint64_t maxStepsPerRay, AccelStats stats,
-                 int loopLimit);
+                 const GpuTraversalConfig& config);
   uint64_t trace(InOutStream& rays, uint64_t active, const std::function<uint64_t()>& retire) override;
   AccelStats stats() const override { return stats_; }
 

@@ -18,15 +18,15 @@ using Clock = std::chrono::steady_clock;
 
 }  // namespace
 
-GpuRenderer::GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width, int height)
+GpuRenderer::GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width, int height, uint64_t maxPageTexels)
     : scene_(scene),
       traversal_(traversal),
       rays_(width, height, kRaySurfaceCount),
-      triangles_(triangleShadingTexels(scene), "triangle shading data"),
-      materials_(materialTexels(scene), "materials"),
+      triangles_(triangleShadingTexels(scene), "triangle shading data", maxPageTexels),
+      materials_(materialTexels(scene), "materials", maxPageTexels),
       raygen_("raygen", "raygen.frag"),
       cull_("cull", "cull.frag", StreamKernel::Depth::Cull),
-      shade_("shade", "shade.frag") {
+      shade_("shade", "shade.frag", StreamKernel::Depth::Test, {streamPagesDefine({&triangles_, &materials_})}) {
   cull_.bindInput("uState", rays_, kStateSurface);
   const char* samplers[] = {"uOrigin", "uDirection", "uState", "uHit", "uColor", "uThroughput", "uPending"};
   for (int s : kAllSurfaces) shade_.bindInput(samplers[s], rays_, s);

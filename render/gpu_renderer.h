@@ -15,8 +15,9 @@ namespace passtrace {
 
 class GpuRenderer {
  public:
-  // `scene` and `traversal` must outlive the renderer.
-  GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width, int height);
+  // `scene` and `traversal` must outlive the renderer. `maxPageTexels` as in
+  // GpuTraversalConfig, for the shading data.
+  GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width, int height, uint64_t maxPageTexels = 0);
 
   // Renders one frame with `bounces` traces (1 = primary rays only). Timing
   // covers ray generation through the last shading pass, ended by glFinish;

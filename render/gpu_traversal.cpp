@@ -45,7 +45,7 @@ std::unique_ptr<GpuTraversal> makeKdTraversal(int number, const Scene& scene, co
   const KdStreamVariant variant = number == 2 ? KdStreamVariant::Restart : KdStreamVariant::Backtrack;
   KdStreamBuild build = buildKdStream(variant, scene.triangles, config.build);
   return std::make_unique<GpuKdTraversal>(variant, build.texels, build.sceneBox, triangleVertexTexels(scene.triangles),
-                                          build.maxStepsPerRay, std::move(build.stats), config.loopLimit);
+                                          build.maxStepsPerRay, std::move(build.stats), config);
 }
 
 std::unique_ptr<GpuTraversal> makeGridTraversal(const Scene& scene, const GpuTraversalConfig& config) {
@@ -53,7 +53,7 @@ std::unique_ptr<GpuTraversal> makeGridTraversal(const Scene& scene, const GpuTra
   const GridStreamData data = makeGridStreamData(build.bounds, build.resolution, {}, {}, {});
   return std::make_unique<GpuGridTraversal>(data, build.texels.cells, build.texels.lists,
                                             triangleVertexTexels(scene.triangles), build.maxStepsPerRay,
-                                            std::move(build.stats), config.loopLimit, config.gridKernels);
+                                            std::move(build.stats), config);
 }
 
 }  // namespace
@@ -82,7 +82,7 @@ std::unique_ptr<GpuTraversal> makeGpuTraversal(int number, const Scene& scene, c
                       : buildGoldsmithSalmonSequence(scene.triangles,
                                                      GoldsmithSalmonConfig{config.build.gsTries, config.build.gsSeed});
       build.stats.name = kGpuNames[number];
-      return std::make_unique<GpuBvhTraversal>(build.sequence, std::move(build.stats), config.loopLimit);
+      return std::make_unique<GpuBvhTraversal>(build.sequence, std::move(build.stats), config);
     }
     case 2:
     case 3:

@@ -38,6 +38,9 @@ struct GpuTraversalConfig {
   AccelBuildConfig build;
   int loopLimit = 20;  // traversal steps per element per pass (tracy's -l)
   GridKernels gridKernels = GridKernels::Merged;
+  // Texels per ConstInputStream texture page, 0 = the largest texture the GL
+  // accepts (--page-texels; smaller values exercise paging on small scenes).
+  uint64_t maxPageTexels = 0;
 };
 
 // The GPU column of thesis Table 4: 0 kk-bvh, 1 gs-bvh, 2 kd-restart,

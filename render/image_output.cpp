@@ -41,10 +41,13 @@ void checkSize(const fs::path& path, int width, int height, std::size_t values, 
 
 // Writes into a temporary file beside path, renamed over it only once
 // complete. The writer is chosen from the final name.
+// The same pixels give the same bytes on every run: no capture date (the
+// OpenEXR writer otherwise stamps the current time into the header).
 template <class WritePixels>
-void writeAtomically(const fs::path& path, const OIIO::ImageSpec& spec, WritePixels&& writePixels) {
+void writeAtomically(const fs::path& path, OIIO::ImageSpec spec, WritePixels&& writePixels) {
   auto out = OIIO::ImageOutput::create(path.string());
   if (!out) fail(path, OIIO::geterror());
+  spec.attribute("DateTime", "");
   TemporaryFile temp(path);
   if (!out->open(temp.path().string(), spec)) fail(path, out->geterror());
   if (!writePixels(*out)) {

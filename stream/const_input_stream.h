@@ -1,10 +1,21 @@
 #pragma once
 // ConstInputStream (thesis 3.5): read-only data, such as a flattened
-// acceleration structure, in an RGBA32F texture addressed as a 1-D array
-// through texelOf() (stream/texel_address.h and kernels_glsl/texel_address.glsl).
+// acceleration structure, as a 1-D array of RGBA32F texels addressed through
+// texelOf() (stream/texel_address.h and kernels_glsl/texel_address.glsl).
+//
+// Data larger than one texture is split into pages: page p holds texels
+// [p << pageLog2, (p + 1) << pageLog2), each page a texture of width
+// 2^widthLog2. A GL caps a texture by side (GL_MAX_TEXTURE_SIZE) and may cap
+// it by bytes too (llvmpipe refuses textures over 1 GiB, 2^26 RGBA32F texels),
+// so the page size is the largest the GL accepts for a proxy texture. Kernels
+// read a stream through the GLSL struct ConstStream, compiled with
+// STREAM_PAGES (streamPagesDefine) sampler slots.
 
+#include <cstdint>
+#include <initializer_list>
 #include <span>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -12,26 +23,46 @@
 
 namespace passtrace {
 
+// A kernel reads at most this many pages per stream (8 x 2^26 texels = 8 GiB
+// on llvmpipe); three paged streams then still fit the 32 texture units.
+inline constexpr uint32_t kMaxStreamPages = 8;
+
 class ConstInputStream {
  public:
-  // `what` names the data in error messages. Throws GlError if the texels do
-  // not fit one texture of the GL's maximum size.
-  ConstInputStream(std::span<const glm::vec4> texels, const std::string& what);
+  // `what` names the data in error messages. `maxPageTexels` (rounded down to
+  // a power of two; 0 = the largest texture the GL accepts) lets tests and
+  // --page-texels exercise paging on small data. Throws GlError if the data
+  // needs more than kMaxStreamPages pages or the GL fails to store it
+  // (GL_OUT_OF_MEMORY is reported as such).
+  ConstInputStream(std::span<const glm::vec4> texels, const std::string& what, uint64_t maxPageTexels = 0);
   ~ConstInputStream();
   ConstInputStream(const ConstInputStream&) = delete;
   ConstInputStream& operator=(const ConstInputStream&) = delete;
 
-  GLuint texture() const { return texture_; }
   size_t size() const { return size_; }
+  uint32_t pageCount() const { return uint32_t(pages_.size()); }
+  GLuint texture(uint32_t page = 0) const { return pages_.at(page); }
   uint32_t widthLog2() const { return widthLog2_; }
-  // The layout the constructor picks for `count` texels: the smallest
-  // power-of-two width whose square holds them.
+  // log2 of the texels per page; 31 for a single page (every valid index
+  // then lies in page 0).
+  uint32_t pageLog2() const { return pageLog2_; }
+
+  // The single-page layout for `count` texels: the smallest power-of-two
+  // width whose square holds them.
   static uint32_t chooseWidthLog2(size_t count);
+  // log2 of the most RGBA32F texels one texture of this GL may hold.
+  static uint32_t largestPageLog2();
 
  private:
-  GLuint texture_ = 0;
+  std::vector<GLuint> pages_;
   size_t size_ = 0;
   uint32_t widthLog2_ = 0;
+  uint32_t pageLog2_ = 31;
 };
+
+// "STREAM_PAGES n" for a kernel that reads `streams`: n is the most pages any
+// of them has (1 for data that fits one texture, so such kernels compile to
+// a single plain texelFetch).
+std::string streamPagesDefine(std::initializer_list<const ConstInputStream*> streams);
 
 }  // namespace passtrace

@@ -7,15 +7,20 @@
 
 namespace passtrace {
 
-InOutStream::InOutStream(int width, int height, int surfaceCount) : width_(width), height_(height) {
-  GLint maxSize = 0, maxDrawBuffers = 0, maxViewport[2] = {0, 0};
+void InOutStream::checkSize(int width, int height) {
+  GLint maxSize = 0, maxViewport[2] = {0, 0};
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
-  glGetIntegerv(GL_MAX_DRAW_BUFFERS, &maxDrawBuffers);
   glGetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport);
   const int limit = std::min({maxSize, maxViewport[0], maxViewport[1]});
   const std::string size = std::to_string(width) + "x" + std::to_string(height);
   if (width < 1 || height < 1 || width > limit || height > limit)
     throw GlError("stream size " + size + " is outside 1.." + std::to_string(limit) + " (the GL limit)");
+}
+
+InOutStream::InOutStream(int width, int height, int surfaceCount) : width_(width), height_(height) {
+  checkSize(width, height);
+  GLint maxDrawBuffers = 0;
+  glGetIntegerv(GL_MAX_DRAW_BUFFERS, &maxDrawBuffers);
   if (surfaceCount < 1 || surfaceCount > kMaxSurfaces || surfaceCount > maxDrawBuffers)
     throw GlError("a stream has 1.." + std::to_string(std::min(kMaxSurfaces, maxDrawBuffers)) + " surfaces, not " +
                   std::to_string(surfaceCount));
@@ -34,6 +39,7 @@ InOutStream::InOutStream(int width, int height, int surfaceCount) : width_(width
   glNamedFramebufferTexture(framebuffer_, GL_DEPTH_ATTACHMENT, depth_, 0);
   setWriteSurfaces({0});
   const GLenum status = glCheckNamedFramebufferStatus(framebuffer_, GL_FRAMEBUFFER);
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
   checkGlError("creating a " + size + " stream with " + std::to_string(surfaceCount) + " surfaces");
   if (status != GL_FRAMEBUFFER_COMPLETE) {
     char hex[16];

@@ -23,6 +23,8 @@ class InOutStream {
   // framebuffer is incomplete.
   InOutStream(int width, int height, int surfaceCount);
   ~InOutStream();
+  // Throws GlError unless a width x height stream fits the GL's limits.
+  static void checkSize(int width, int height);
   InOutStream(const InOutStream&) = delete;
   InOutStream& operator=(const InOutStream&) = delete;
 

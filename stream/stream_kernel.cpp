@@ -1,5 +1,7 @@
 #include "stream/stream_kernel.h"
 
+#include <algorithm>
+
 #include "stream/const_input_stream.h"
 #include "stream/gl_error.h"
 #include "stream/gl_program.h"
@@ -53,8 +55,19 @@ void StreamKernel::bindTexture(const char* sampler, GLuint texture) {
   it->second.second = texture;
 }
 
-void StreamKernel::bindInput(const char* sampler, const ConstInputStream& stream) {
-  bindTexture(sampler, stream.texture());
+void StreamKernel::bindInput(const char* name, const ConstInputStream& stream) {
+  // `name` is a ConstStream uniform (kernels_glsl/texel_address.glsl). Every
+  // sampler slot the kernel was compiled with gets a texture: the pages,
+  // then the last page again for slots the data does not need.
+  const std::string base(name);
+  const auto slot = [&](uint32_t i) { return base + ".pages[" + std::to_string(i) + "]"; };
+  if (stream.pageCount() > 1 && location(slot(0).c_str()) != -1 && location(slot(stream.pageCount() - 1).c_str()) == -1)
+    throw GlError("kernel " + name_ + ": " + base + " has " + std::to_string(stream.pageCount()) +
+                  " texture pages but the kernel was compiled for fewer (STREAM_PAGES)");
+  for (uint32_t i = 0; i < kMaxStreamPages && (i == 0 || location(slot(i).c_str()) != -1); ++i)
+    bindTexture(slot(i).c_str(), stream.texture(std::min(i, stream.pageCount() - 1)));
+  set((base + ".widthLog2").c_str(), stream.widthLog2());
+  set((base + ".pageLog2").c_str(), stream.pageLog2());
 }
 
 void StreamKernel::bindInput(const char* sampler, const InOutStream& stream, int surface) {

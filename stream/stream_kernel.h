@@ -46,8 +46,9 @@ class StreamKernel {
   void set(const char* uniform, const glm::vec4& v);
   void set(const char* uniform, const glm::ivec3& v);
 
-  // Binds a sampler2D uniform to constant data or to one surface of a stream.
-  void bindInput(const char* sampler, const ConstInputStream& stream);
+  // Binds a ConstStream uniform (its page samplers and layout) to constant
+  // data, or a sampler2D uniform to one surface of a stream.
+  void bindInput(const char* name, const ConstInputStream& stream);
   void bindInput(const char* sampler, const InOutStream& stream, int surface);
 
   uint64_t execute(bool countFragments = false);

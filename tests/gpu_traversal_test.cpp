@@ -17,6 +17,7 @@ struct GpuCase {
   int accelerator;  // GPU column of thesis Table 4
   GridKernels gridKernels;
   std::string name;
+  TriangleTest triangleTest = TriangleTest::MollerTrumbore;
 };
 
 const std::vector<GpuCase>& gpuCases() {
@@ -25,18 +26,26 @@ const std::vector<GpuCase>& gpuCases() {
                                              {2, GridKernels::Merged, "kd_restart"},
                                              {3, GridKernels::Merged, "kd_backtrack"},
                                              {4, GridKernels::Merged, "grid"},
-                                             {4, GridKernels::Split, "grid_split"}};
+                                             {4, GridKernels::Split, "grid_split"},
+                                             // --triangle-test watertight, in the kernels and on the CPU
+                                             {0, GridKernels::Merged, "kk_bvh_watertight", TriangleTest::Watertight},
+                                             {1, GridKernels::Merged, "gs_bvh_watertight", TriangleTest::Watertight},
+                                             {2, GridKernels::Merged, "kd_restart_watertight", TriangleTest::Watertight},
+                                             {3, GridKernels::Merged, "kd_backtrack_watertight", TriangleTest::Watertight},
+                                             {4, GridKernels::Merged, "grid_watertight", TriangleTest::Watertight},
+                                             {4, GridKernels::Split, "grid_split_watertight", TriangleTest::Watertight}};
   return cases;
 }
 
 // The CPU accelerator that runs the same algorithm over the same data.
-std::unique_ptr<CpuAccelerator> cpuTwin(int gpuAccelerator, std::span<const Triangle> tris) {
+std::unique_ptr<CpuAccelerator> cpuTwin(int gpuAccelerator, std::span<const Triangle> tris,
+                                        const AccelBuildConfig& config) {
   switch (gpuAccelerator) {
-    case 0: return makeCpuAccelerator(0, tris);
-    case 1: return makeCpuAccelerator(1, tris);
-    case 2: return makeStreamMirrorAccelerator(StreamMirror::KdRestart, tris, {});
-    case 3: return makeStreamMirrorAccelerator(StreamMirror::KdBacktrack, tris, {});
-    default: return makeStreamMirrorAccelerator(StreamMirror::Grid, tris, {});
+    case 0: return makeCpuAccelerator(0, tris, config);
+    case 1: return makeCpuAccelerator(1, tris, config);
+    case 2: return makeStreamMirrorAccelerator(StreamMirror::KdRestart, tris, config);
+    case 3: return makeStreamMirrorAccelerator(StreamMirror::KdBacktrack, tris, config);
+    default: return makeStreamMirrorAccelerator(StreamMirror::Grid, tris, config);
   }
 }
 
@@ -50,7 +59,9 @@ TEST_P(GpuTraversalAgreement, SameHitsAsBruteForceAndSameStepsAsTheCpu) {
   scene.triangles = mesh.tris;
   scene.materialIds.assign(mesh.tris.size(), 0);
   scene.materials = {Material{}};
-  const auto cpu = cpuTwin(c.accelerator, scene.triangles);
+  AccelBuildConfig build;
+  build.triangleTest = c.triangleTest;
+  const auto cpu = cpuTwin(c.accelerator, scene.triangles, build);
 
   std::vector<Ray> rays = testmesh::rayMix(testmesh::boundsOf(mesh.tris), 500, 42);
   std::vector<bool> shadow(rays.size(), false);
@@ -63,13 +74,13 @@ TEST_P(GpuTraversalAgreement, SameHitsAsBruteForceAndSameStepsAsTheCpu) {
   }
   std::vector<test::TracedRays> gpu;
   for (int loopLimit : {3, 64}) {
-    const auto traversal = makeGpuTraversal(c.accelerator, scene, GpuTraversalConfig{{}, loopLimit, c.gridKernels});
+    const auto traversal = makeGpuTraversal(c.accelerator, scene, GpuTraversalConfig{build, loopLimit, c.gridKernels});
     gpu.push_back(test::traceOnGpu(*traversal, rays, shadow));
   }
   size_t found = 0;
   for (size_t i = 0; i < rays.size(); ++i) {
     const bool anyHit = shadow[i];
-    const Hit brute = intersectBruteForce(mesh.tris, rays[i], anyHit);
+    const Hit brute = intersectBruteForce(mesh.tris, rays[i], anyHit, nullptr, c.triangleTest);
     RayStats stats;
     const Hit twin = cpu->intersect(rays[i], anyHit, &stats);
     const std::string what = "ray " + std::to_string(i) + (anyHit ? " (shadow)" : "");

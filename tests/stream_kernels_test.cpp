@@ -207,7 +207,7 @@ struct BvhFixture {
 TEST_F(GlTest, OneTraversalPassStopsAtTheLoopLimit) {
   BvhFixture f;
   const int loopLimit = 3;
-  GpuBvhTraversal traversal(f.sequence, AccelStats{}, loopLimit);
+  GpuBvhTraversal traversal(f.sequence, AccelStats{}, GpuTraversalConfig{{}, loopLimit});
   // Stop after one pass by retiring nothing and reporting all done.
   std::vector<glm::vec4> state;
   {
@@ -243,7 +243,7 @@ TEST_F(GlTest, TraversalResumesAcrossPassesWithTheSameResult) {
   BvhFixture f;
   std::vector<test::TracedRays> results;
   for (int loopLimit : {1, 2, 7, 100000}) {
-    GpuBvhTraversal traversal(f.sequence, AccelStats{}, loopLimit);
+    GpuBvhTraversal traversal(f.sequence, AccelStats{}, GpuTraversalConfig{{}, loopLimit});
     results.push_back(test::traceOnGpu(traversal, f.rays));
   }
   EXPECT_GT(results[0].passes, results[3].passes);
@@ -367,7 +367,7 @@ TEST_F(GlTest, ShadingMatchesCpp) {
     }
     for (int s = 0; s < shadedSurfaces; ++s) stream.upload(s, surfaces[s]);
     ConstInputStream triangles(triangleShadingTexels(scene), "triangles"), materials(materialTexels(scene), "materials");
-    StreamKernel shade("shade", "shade.frag");
+    StreamKernel shade("shade", "shade.frag", StreamKernel::Depth::Test, {streamPagesDefine({&triangles, &materials})});
     const char* samplers[] = {"uOrigin", "uDirection", "uState", "uHit", "uColor", "uThroughput", "uPending"};
     for (int s = 0; s < shadedSurfaces; ++s) shade.bindInput(samplers[s], stream, s);
     shade.bindInput("uTriangles", triangles);

@@ -1,0 +1,87 @@
+#include "tests/cli_support.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "accel/brute_force.h"
+#include "render/camera.h"
+#include "render/image_output.h"
+
+namespace fs = std::filesystem;
+
+namespace passtrace::test {
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void CliTest::SetUp() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  dir_ = fs::temp_directory_path() /
+         ("passtrace_cli_" + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" + info->name());
+  fs::remove_all(dir_);
+  fs::create_directories(dir_);
+}
+
+void CliTest::TearDown() { fs::remove_all(dir_); }
+
+RunResult CliTest::run(const std::string& args, const std::string& env) {
+  const std::string cmd = env + " " + PASSTRACE_BINARY + " " + args + " > " + (dir_ / "stdout").string() + " 2> " +
+                          (dir_ / "stderr").string() + " < /dev/null";
+  const int raw = std::system(cmd.c_str());
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(dir_ / "stdout"), slurp(dir_ / "stderr")};
+}
+
+std::vector<std::string> CliTest::outputs() const {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir_))
+    if (!e.is_directory() && e.path().filename() != "stdout" && e.path().filename() != "stderr" && e.path().filename() != "bad.obj")
+      names.push_back(e.path().filename().string());
+  return names;
+}
+
+void CliTest::expectOneLineError(const RunResult& r, const std::string& mention) {
+  EXPECT_NE(r.status, 0);
+  EXPECT_EQ(r.err.rfind("passtrace: error: ", 0), 0u) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find(mention), std::string::npos) << "expected '" << mention << "' in: " << r.err;
+  EXPECT_TRUE(outputs().empty()) << "an output was left behind: " << outputs().front();
+}
+
+void expectHitsMatchBruteForce(const std::string& file, const Scene& scene, int width, int height,
+                               double minFoundFraction, int allowedMismatches) {
+  int w = 0, h = 0;
+  const std::vector<HitRecord> hits = readHitBuffer(file, w, h);
+  ASSERT_EQ(w, width);
+  ASSERT_EQ(h, height);
+  const CameraBasis basis = makeCameraBasis(scene.camera, w, h);
+  int found = 0, mismatches = 0;
+  for (int py = 0; py < h; ++py)
+    for (int px = 0; px < w; ++px) {
+      const HitRecord& got = hits[size_t(py) * w + px];
+      Hit expected = intersectBruteForce(scene.triangles, primaryRay(basis, px, py), false);
+      expected.t = std::ldexp(expected.t, -scene.scaleExponent);  // the file's units, exactly
+      found += expected.found();
+      if (got.id == expected.id) {
+        if (expected.found()) EXPECT_NEAR(got.t, expected.t, 1e-5f * expected.t);
+        else EXPECT_EQ(got.t, kInfinity);
+        continue;
+      }
+      // Two triangles met at the same t (a shared edge or vertex).
+      const bool tie = expected.found() && got.id != kNoHit && std::abs(got.t - expected.t) <= 1e-5f * expected.t;
+      if (!tie) ++mismatches;
+    }
+  EXPECT_LE(mismatches, allowedMismatches);
+  EXPECT_GE(found, minFoundFraction * w * h);
+  if (minFoundFraction > 0) EXPECT_GT(found, 0);
+}
+
+}  // namespace passtrace::test
