@@ -1,8 +1,10 @@
 #include "apps/cli_options.h"
 
 #include <charconv>
+#include <cmath>
 #include <iostream>
 #include <stdexcept>
+#include <utility>
 
 #include <CLI/CLI.hpp>
 
@@ -43,9 +45,11 @@ int parseOptions(int argc, char** argv, Options& o) {
                  "kd-restart, kd-backtrack, grid-stream")
       ->capture_default_str();
   app.add_option("-s,--scene", o.scene,
-                 "scene: 0 cows, 1 robots, 2 kitchen, 3 bunny, 4 cornell (thesis order), by number or name, or a "
-                 ".obj, .aff, .nff, .gltf or .glb file")
+                 "scene: 0 cows, 1 robots, 2 kitchen, 3 bunny, 4 cornell (thesis order), by number or name; "
+                 "spheres (procedural, --triangles); or a .obj, .aff, .nff, .gltf or .glb file")
       ->capture_default_str();
+  app.add_option("--triangles", o.triangles, "size of the procedural 'spheres' scene (at least this many triangles)")
+      ->check(CLI::Range(kSphereFieldMinTriangles, kSphereFieldMaxTriangles))->capture_default_str();
   app.add_option("--bart-dir", o.bartDir,
                  "directory holding the BART scenes kitchen/ and robots/ (default: $PASSTRACE_BART_DIR, else "
                  "../shared/scenes/bart)");
@@ -75,7 +79,8 @@ int parseOptions(int argc, char** argv, Options& o) {
       ->check(CLI::Range(1, 1 << 20))->capture_default_str();
   app.add_option("-c,--swap-children", o.swapChildren, "K/K BVH: children swapped with probability 0.5 c")
       ->check(CLI::Range(0, 2))->capture_default_str();
-  app.add_option("--threads", o.threads, "CPU renderer threads (0: all cores)")->capture_default_str();
+  app.add_option("--threads", o.threads, "CPU renderer threads (0: all cores)")
+      ->check(CLI::Range(0u, kMaxThreads))->capture_default_str();
   app.add_option("--eye", eye, "camera position x,y,z (default: the scene's view)");
   app.add_option("--look-at", lookAt, "point the camera looks at x,y,z");
   app.add_option("--up", up, "camera up vector x,y,z");
@@ -88,6 +93,15 @@ int parseOptions(int argc, char** argv, Options& o) {
   app.add_option("--grid-kernels", o.gridKernels,
                  "GPU uniform grid: merged traversal+intersection kernel, or Purcell's split kernels")
       ->check(CLI::IsMember({"merged", "split"}))->capture_default_str();
+  app.add_option("--triangle-test", o.triangleTest,
+                 "ray/triangle test of the CPU and GPU ray tracers: moller-trumbore (the thesis's) or watertight "
+                 "(Woop, Benthin, Wald 2013: no ray slips between triangles sharing an edge); -r 3 uses "
+                 "Embree's own test and ignores it")
+      ->check(CLI::IsMember({"moller-trumbore", "watertight"}))->capture_default_str();
+  app.add_option("--page-texels", o.pageTexels,
+                 "GPU: texels per data texture (rounded down to a power of two); larger data spreads over "
+                 "several textures. 0: the largest texture the GL accepts")
+      ->check(CLI::Range(uint64_t(0), uint64_t(1) << 31))->capture_default_str();
   app.add_option("--heatmap", o.heatmap, "write per-pixel traversal steps (all bounces) as a heat map image");
   app.add_flag("--stats", o.stats, "print the structure's memory and the per-ray step statistics");
   app.add_flag("-q,--quiet", o.quiet, "print nothing but errors");
@@ -103,6 +117,9 @@ int parseOptions(int argc, char** argv, Options& o) {
       if (c == '\n') c = ' ';
     throw std::runtime_error(message);
   }
+  // CLI::Range lets NaN through: every comparison with it is false.
+  for (const auto& [name, value] : {std::pair{"--time", o.time}, {"--grid-multiplier", o.gridMultiplier}, {"--fov", fov}})
+    if (std::isnan(value)) throw std::runtime_error(std::string(name) + ": not a number");
   if (size > 0) {
     if (app.count("--width") || app.count("--height"))
       throw std::runtime_error("-w sets both sides; do not combine it with --width or --height");

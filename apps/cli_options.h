@@ -7,6 +7,8 @@
 
 #include <glm/glm.hpp>
 
+#include "scenes/sphere_field.h"
+
 namespace passtrace {
 
 // The command line accepts up to this many pixels on a side; the GPU
@@ -14,11 +16,14 @@ namespace passtrace {
 // to kMaxCpuPixels.
 inline constexpr int kMaxImageSide = 65536;
 inline constexpr long long kMaxCpuPixels = 16384LL * 16384LL;  // about 20 GiB of path state
+// --threads: far beyond any core count, yet no run can ask for billions of threads.
+inline constexpr unsigned kMaxThreads = 1024;
 
 struct Options {
   int renderer = 2;                 // -r: 0 OpenGL preview, 1 CPU, 2 GPU stream, 3 CPU through Embree
   std::string accelerator = "0";    // -a: number (thesis Table 4) or name
   std::string scene = "bunny";      // -s: name or file
+  uint64_t triangles = kSphereFieldDefaultTriangles;  // --triangles: size of the "spheres" scene
   std::string bartDir;              // --bart-dir: where kitchen/ and robots/ are (else $PASSTRACE_BART_DIR)
   float time = 0.0f;                // --time: AFF animation time
   int width = 512, height = 512;    // -w N, or --width/--height
@@ -40,6 +45,8 @@ struct Options {
   std::string json;                 // --json
   std::string glBackend = "auto";   // --gl-backend
   std::string gridKernels = "merged";  // --grid-kernels: merged or split (Purcell)
+  std::string triangleTest = "moller-trumbore";  // --triangle-test: moller-trumbore or watertight
+  uint64_t pageTexels = 0;          // --page-texels: GPU data texture size, 0 = the GL's largest
   std::string heatmap;              // --heatmap: per-pixel traversal steps as an image
   bool stats = false;               // --stats: print structure and per-ray statistics
   bool quiet = false;

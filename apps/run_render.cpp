@@ -1,11 +1,14 @@
 #include "apps/run_render.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
 
 #include <nlohmann/json.hpp>
 
+#include "apps/memory_check.h"
 #include "accel/cpu_accelerator.h"
 #include "accel/embree_accelerator.h"
 #include "accel/stream_mirror_accelerators.h"
@@ -18,7 +21,9 @@
 #include "render/image_output.h"
 #include "render/preview_renderer.h"
 #include "scenes/scene_registry.h"
+#include "scenes/scene_scale.h"
 #include "stream/gl_context.h"
+#include "stream/inout_stream.h"
 
 namespace fs = std::filesystem;
 
@@ -38,9 +43,17 @@ std::vector<CameraSpec> cameraViews(const Scene& scene, const Options& o) {
     pathScene.camera = base;
     for (int k = 0; k < o.angles; ++k) views.push_back(cameraPathView(pathScene, k, o.angles));
   }
+  // The command line speaks the file's units; the scene may be rescaled by 2^k.
+  const auto toScene = [&](const char* option, const glm::vec3& p) {
+    const glm::vec3 scaled = scaleByPowerOfTwo(p, scene.scaleExponent);
+    if (!std::isfinite(scaled.x) || !std::isfinite(scaled.y) || !std::isfinite(scaled.z))
+      throw std::runtime_error(std::string(option) + ": too far from the scene for single precision (the scene is "
+                               "rescaled by 2^" + std::to_string(scene.scaleExponent) + ")");
+    return scaled;
+  };
   for (CameraSpec& v : views) {
-    if (o.eye) v.eye = *o.eye;
-    if (o.lookAt) v.lookAt = *o.lookAt;
+    if (o.eye) v.eye = toScene("--eye", *o.eye);
+    if (o.lookAt) v.lookAt = toScene("--look-at", *o.lookAt);
     if (o.up) v.up = *o.up;
   }
   return views;
@@ -78,6 +91,13 @@ std::unique_ptr<CpuAccelerator> makeCpuAcceleratorFor(const std::string& name, c
   return makeCpuAccelerator(acceleratorNumber(name), scene.triangles, build);
 }
 
+// In double: the cross product of tiny edges underflows in float.
+bool hasArea(const Triangle& t) {
+  const glm::dvec3 v0(t.v0);
+  const glm::dvec3 n = glm::cross(glm::dvec3(t.v1) - v0, glm::dvec3(t.v2) - v0);
+  return n != glm::dvec3(0.0);
+}
+
 }  // namespace
 
 void runPassTrace(const Options& o) {
@@ -90,11 +110,33 @@ void runPassTrace(const Options& o) {
     throw std::runtime_error("image " + std::to_string(o.width) + "x" + std::to_string(o.height) +
                              " is too large for the CPU renderer (at most 16384x16384 pixels)");
   checkOutputs(o);
+  // The GL first: its limits on the image size are known before anything is built.
+  std::unique_ptr<GlContext> gl;
+  if (o.renderer == 0 || o.renderer == 2) {
+    std::string notices;
+    gl = GlContext::create(parseGlBackend(o.glBackend), &notices);
+    if (!notices.empty() && !o.quiet) std::cerr << "passtrace: " << notices;
+    InOutStream::checkSize(o.width, o.height);
+  }
   SceneOptions sceneOptions;
   if (!o.bartDir.empty()) sceneOptions.bartDir = o.bartDir;
   sceneOptions.time = o.time;
+  sceneOptions.triangles = o.triangles;
+  // Say so before trying: the procedural scene's size is known before it is
+  // made, a file's once it is read.
+  const std::string structure = o.renderer == 3   ? "embree"
+                                : o.renderer == 0 ? "preview"
+                                : o.renderer == 2 ? gpuAcceleratorName(accelerator)
+                                : accelerator < 0 ? o.accelerator
+                                                  : acceleratorName(accelerator);
+  const uint64_t pixels = uint64_t(o.width) * uint64_t(o.height);
+  if (o.scene == "spheres")
+    checkRunFitsInMemory(o.scene, o.renderer, structure, sphereFieldTriangles(o.triangles), pixels);
   const Scene scene = loadScene(o.scene, sceneOptions);
+  checkRunFitsInMemory(o.scene, o.renderer, structure, scene.triangles.size(), pixels);
   if (scene.triangles.empty()) throw std::runtime_error(o.scene + ": the scene has no triangles");
+  if (std::none_of(scene.triangles.begin(), scene.triangles.end(), hasArea) && !o.quiet)
+    std::cerr << "passtrace: warning: " << o.scene << ": every triangle has zero area; only the background is visible\n";
   const std::vector<CameraSpec> views = cameraViews(scene, o);
   for (const CameraSpec& v : views) makeCameraBasis(v, o.width, o.height);  // reject a bad camera before building
 
@@ -104,13 +146,7 @@ void runPassTrace(const Options& o) {
   build.gridMultiplier = o.gridMultiplier;
   build.kdMinElements = o.kdMinElements;
   build.kdMaxDepth = o.kdMaxDepth;
-
-  std::unique_ptr<GlContext> gl;
-  if (o.renderer == 0 || o.renderer == 2) {
-    std::string notices;
-    gl = GlContext::create(parseGlBackend(o.glBackend), &notices);
-    if (!notices.empty() && !o.quiet) std::cerr << "passtrace: " << notices;
-  }
+  build.triangleTest = *triangleTestByName(o.triangleTest);  // the parser accepts only valid names
 
   std::unique_ptr<GpuTraversal> gpuTraversal;
   std::unique_ptr<GpuRenderer> gpuRenderer;
@@ -120,8 +156,8 @@ void runPassTrace(const Options& o) {
   RenderFn render;
   if (o.renderer == 2) {
     const GridKernels gridKernels = o.gridKernels == "split" ? GridKernels::Split : GridKernels::Merged;
-    gpuTraversal = makeGpuTraversal(accelerator, scene, GpuTraversalConfig{build, o.loopLimit, gridKernels});
-    gpuRenderer = std::make_unique<GpuRenderer>(scene, *gpuTraversal, o.width, o.height);
+    gpuTraversal = makeGpuTraversal(accelerator, scene, GpuTraversalConfig{build, o.loopLimit, gridKernels, o.pageTexels});
+    gpuRenderer = std::make_unique<GpuRenderer>(scene, *gpuTraversal, o.width, o.height, o.pageTexels);
     accelStats = gpuTraversal->stats();
     render = [&](const CameraSpec& v, bool hits) { return gpuRenderer->render(v, o.bounces, hits); };
     // One untimed frame first: llvmpipe compiles each kernel on its first draw.
@@ -175,7 +211,11 @@ void runPassTrace(const Options& o) {
   const double rays = sumRays / n;
   const double mraysPerS = frameMs > 0 ? rays / frameMs / 1000.0 : 0.0;
   if (!o.output.empty()) writeImage(o.output, first.width, first.height, first.rgb);
-  if (!o.hits.empty()) writeHitBuffer(o.hits, first.width, first.height, first.primaryHits);
+  if (!o.hits.empty()) {
+    // Hit distances in the file's units: 2^-k undoes the rescaling exactly.
+    for (HitRecord& h : first.primaryHits) h.t = std::ldexp(h.t, -scene.scaleExponent);
+    writeHitBuffer(o.hits, first.width, first.height, first.primaryHits);
+  }
   if (!o.heatmap.empty()) writeImage(o.heatmap, first.width, first.height, heatmapRgb(first.steps));
   if (!o.json.empty()) {
     nlohmann::json j = {
@@ -185,6 +225,9 @@ void runPassTrace(const Options& o) {
         {"renderer_id", o.renderer},
         {"accelerator", accelStats.name},
         {"accelerator_id", o.renderer == 0 || accelerator < 0 ? nlohmann::json(nullptr) : nlohmann::json(accelerator)},
+        {"triangle_test", o.renderer == 0   ? nlohmann::json(nullptr)
+                          : o.renderer == 3 ? nlohmann::json("embree")
+                                            : nlohmann::json(o.triangleTest)},
         {"width", o.width},
         {"height", o.height},
         {"bounces", o.bounces},

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <string_view>
@@ -24,6 +25,11 @@ namespace fs = std::filesystem;
 
 constexpr std::size_t kMaxIncludeDepth = 64;
 constexpr std::size_t kMaxBlockDepth = 256;
+// A file may include another many times over (instancing): these bound the
+// total, so a chain of files each including the next twice cannot expand
+// exponentially. BART Robots, the largest, has 835 includes and 11 MB.
+constexpr std::size_t kMaxIncludes = 10000;
+constexpr std::uintmax_t kMaxIncludedBytes = std::uintmax_t{1} << 30;
 constexpr long long kMaxIndex = (1LL << 31) - 1;
 
 class AffParser {
@@ -38,8 +44,12 @@ class AffParser {
     fs::path key = fs::weakly_canonical(path, ec);
     if (ec) key = fs::absolute(path, ec);
     includeStack_.push_back(key);
+    files_.push_back(path);
+    const uint32_t outerFile = currentFile_;
+    currentFile_ = static_cast<uint32_t>(files_.size() - 1);
     TextReader reader(path);
     parseBlock(reader, false, 0);
+    currentFile_ = outerFile;
     includeStack_.pop_back();
   }
 
@@ -70,6 +80,7 @@ class AffParser {
       normals_.push_back(withNormals ? list.normals[i] : std::array<glm::vec3, 3>{});
       hasNormals_.push_back(withNormals ? 1 : 0);
       triangleNode_.push_back(currentNode_);
+      triangleSource_.push_back({currentFile_, commandLine_});
       scene_.materialIds.push_back(currentMaterial_);
     }
     anyNormals_ = anyNormals_ || (withNormals && !list.triangles.empty());
@@ -81,6 +92,7 @@ class AffParser {
     while (!r.atEnd()) {
       const bool sameLine = r.nextOnSameLine();
       const std::string_view cmd = r.word("a command");
+      commandLine_ = static_cast<uint32_t>(r.lastLine());
       if (cmd == "}") {
         if (braced) return;
         r.failAt(lineOfLast(r), "'}' without a matching '{'");
@@ -316,6 +328,10 @@ class AffParser {
     const fs::path target = r.file().parent_path() / name;
     std::error_code ec;
     if (!fs::exists(target, ec)) r.failAt(line, "included file " + TextReader::quoted(name) + " not found (" + target.string() + ")");
+    if (!fs::is_regular_file(target, ec)) r.failAt(line, "included file " + TextReader::quoted(name) + " is not a regular file");
+    if (++includes_ > kMaxIncludes) r.failAt(line, "more than " + std::to_string(kMaxIncludes) + " includes in all");
+    includedBytes_ += fs::file_size(target, ec);
+    if (includedBytes_ > kMaxIncludedBytes) r.failAt(line, "included files add up to more than 1 GiB");
     fs::path key = fs::weakly_canonical(target, ec);
     if (ec) key = fs::absolute(target, ec);
     if (std::find(includeStack_.begin(), includeStack_.end(), key) != includeStack_.end())
@@ -385,11 +401,22 @@ class AffParser {
   int currentNode_ = 0;
   uint32_t currentMaterial_ = 0;
   std::vector<int> triangleNode_;
+  // Where each triangle's command is (an index into files_, a line), so that
+  // a vertex that overflows only after the transforms can be reported there.
+  std::vector<fs::path> files_;
+  uint32_t currentFile_ = 0;
+  uint32_t commandLine_ = 0;
+  struct Source {
+    uint32_t file, line;
+  };
+  std::vector<Source> triangleSource_;
   std::vector<std::array<glm::vec3, 3>> normals_;
   std::vector<uint8_t> hasNormals_;
   bool anyNormals_ = false;
   std::map<std::string, AnimatedTransform> animations_;
   std::vector<fs::path> includeStack_;
+  std::size_t includes_ = 0;
+  std::uintmax_t includedBytes_ = 0;
   std::vector<PointLight> lights_;
   bool haveView_ = false;
   bool haveAmbient_ = false;
@@ -412,11 +439,17 @@ Scene AffParser::finish(const fs::path& path) {
     normalMatrix[i] = glm::determinant(m) != 0.0f ? glm::transpose(glm::inverse(m)) : m;
   }
   const auto point = [](const glm::mat4& m, const glm::vec3& p) { return glm::vec3(m * glm::vec4(p, 1.0f)); };
+  const auto finite = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
   for (std::size_t i = 0; i < scene_.triangles.size(); ++i) {
     const std::size_t node = static_cast<std::size_t>(triangleNode_[i]);
-    if (node == 0) continue;
     Triangle& t = scene_.triangles[i];
-    t = {point(world[node], t.v0), point(world[node], t.v1), point(world[node], t.v2)};
+    if (node != 0) t = {point(world[node], t.v0), point(world[node], t.v1), point(world[node], t.v2)};
+    // The non-finite rule (scene.h): finite numbers can still overflow in a
+    // transform (xs 1e30 ...) or a tessellation (a sphere of radius 3e38).
+    if (!finite(t.v0) || !finite(t.v1) || !finite(t.v2))
+      throw SceneError(files_[triangleSource_[i].file], triangleSource_[i].line,
+                       std::string("non-finite vertex after ") + (node != 0 ? "the transforms" : "tessellation") +
+                           " (the coordinates overflow single precision)");
   }
   if (anyNormals_) {
     scene_.vertexNormals.resize(scene_.triangles.size());

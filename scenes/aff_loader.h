@@ -53,7 +53,9 @@
 // and no ambient the Robots street is black; without `am` it is 0.1).
 //
 // Robustness: counts larger than the rest of the file could hold, include
-// nesting deeper than 64, block nesting deeper than 256 and scenes over
+// nesting deeper than 64, more than 10,000 includes or 1 GiB of included
+// files in all, an included file that is not a regular file (a directory,
+// /dev/zero, a FIFO), block nesting deeper than 256 and scenes over
 // kAffMaxTriangles triangles are refused. Numbers after a command's arguments
 // on the same line are ignored (stray tokens); a number where a command
 // should start on a new line is an error (usually a wrong count).

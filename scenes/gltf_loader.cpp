@@ -1,6 +1,8 @@
 #include "scenes/gltf_loader.h"
 
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -12,6 +14,7 @@
 #include <iostream>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -52,6 +55,74 @@ constexpr std::size_t kMaxNodeDepth = 1024;
 
 bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
   return true;
+}
+
+// tinygltf's own file callbacks open a FIFO and wait for a writer forever,
+// and size a directory by seeking to its end (a huge allocation): these read
+// regular files only, the scene file and its external buffers alike.
+bool isFile(const std::string& path, void*) {
+  struct stat info {};
+  return ::stat(path.c_str(), &info) == 0;
+}
+bool readRegularFile(std::vector<unsigned char>* out, std::string* error, const std::string& path, void*) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) {
+    *error += std::string("cannot open: ") + std::strerror(errno);
+    return false;
+  }
+  struct stat info {};
+  const bool regular = ::fstat(fd, &info) == 0 && S_ISREG(info.st_mode);
+  const bool small = static_cast<std::uintmax_t>(info.st_size) <= kMaxFileBytes;
+  if (regular && small) {
+    out->resize(static_cast<std::size_t>(info.st_size));
+    std::size_t filled = 0;
+    for (ssize_t n = 1; filled < out->size() && n != 0;) {
+      n = ::read(fd, out->data() + filled, out->size() - filled);
+      if (n < 0 && errno != EINTR) break;
+      if (n > 0) filled += static_cast<std::size_t>(n);
+    }
+    out->resize(filled);
+  }
+  ::close(fd);
+  if (!regular) *error += "not a regular file";
+  if (regular && !small) *error += "larger than 1 GiB";
+  return regular && small;
+}
+
+// tinygltf converts "extras" and "extensions" into its Value type
+// recursively, so JSON nested thousands of levels deep overflows the stack;
+// glTF itself nests about six levels.
+constexpr int kMaxJsonDepth = 256;
+
+// The deepest nesting of [ and { outside strings.
+int jsonDepth(std::string_view json) {
+  int depth = 0, deepest = 0;
+  bool inString = false;
+  for (std::size_t i = 0; i < json.size(); ++i) {
+    const char c = json[i];
+    if (inString) {
+      if (c == '\\') ++i;  // skips the escaped character
+      else if (c == '"') inString = false;
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
+// The JSON of a .gltf file, or the JSON chunk of a .glb (empty where the
+// header is too broken to find it: tinygltf reports that).
+std::string_view jsonOf(const std::vector<unsigned char>& bytes, bool binary) {
+  const std::string_view all(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  if (!binary) return all;
+  uint32_t length = 0;
+  if (bytes.size() < 20) return {};
+  std::memcpy(&length, bytes.data() + 12, sizeof length);
+  return length <= bytes.size() - 20 ? all.substr(20, length) : std::string_view{};
 }
 
 class GltfBuilder {
@@ -191,8 +262,11 @@ class GltfBuilder {
     if (depth > kMaxNodeDepth) fail("node " + std::to_string(index) + ": nodes nested deeper than " + std::to_string(kMaxNodeDepth));
     const tinygltf::Node& node = model_.nodes[i];
     const glm::mat4 world = parent * localMatrix(node, i);
-    for (float x : {world[0][0], world[1][1], world[2][2], world[3][0], world[3][1], world[3][2]})
-      if (!std::isfinite(x)) fail("node " + std::to_string(index) + ": transform is not finite");
+    // Every entry: finite factors can overflow in the product, and an
+    // infinite off-diagonal entry turns vertices into NaN.
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r)
+        if (!std::isfinite(world[c][r])) fail("node " + std::to_string(index) + ": transform is not finite");
 
     if (node.camera >= 0 && !haveCamera_) {
       if (static_cast<std::size_t>(node.camera) >= model_.cameras.size())
@@ -300,6 +374,11 @@ class GltfBuilder {
         t.v0 = glm::vec3(world * glm::vec4(positions[c[0]], 1.0f));
         t.v1 = glm::vec3(world * glm::vec4(positions[c[1]], 1.0f));
         t.v2 = glm::vec3(world * glm::vec4(positions[c[2]], 1.0f));
+        // The non-finite rule (scene.h): a finite transform can still carry a
+        // finite position past FLT_MAX.
+        for (const glm::vec3& v : {t.v0, t.v1, t.v2})
+          if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+            fail(where + ": non-finite vertex after the node transforms (the coordinates overflow single precision)");
         scene_.triangles.push_back(t);
         scene_.materialIds.push_back(materialId);
         std::array<glm::vec3, 3> vn{};
@@ -380,14 +459,28 @@ Scene loadGltf(const fs::path& path) {
 
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&skipImage, nullptr);
+  tinygltf::FsCallbacks files{};
+  files.FileExists = &isFile;
+  files.ExpandFilePath = &tinygltf::ExpandFilePath;
+  files.ReadWholeFile = &readRegularFile;
+  files.WriteWholeFile = &tinygltf::WriteWholeFile;
+  loader.SetFsCallbacks(files);
   tinygltf::Model model;
   std::string error, warning;
   std::string extension = path.extension().string();
   for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const bool binary = extension == ".glb";
+  std::vector<unsigned char> bytes;
+  if (!readRegularFile(&bytes, &error, path.string(), nullptr)) throw SceneError(path, error);
+  if (jsonDepth(jsonOf(bytes, binary)) > kMaxJsonDepth)
+    throw SceneError(path, "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+  const std::string baseDir = path.parent_path().string();
   bool ok = false;
   try {
-    ok = extension == ".glb" ? loader.LoadBinaryFromFile(&model, &error, &warning, path.string())
-                             : loader.LoadASCIIFromFile(&model, &error, &warning, path.string());
+    ok = binary ? loader.LoadBinaryFromMemory(&model, &error, &warning, bytes.data(),
+                                              static_cast<unsigned int>(bytes.size()), baseDir)
+                : loader.LoadASCIIFromString(&model, &error, &warning, reinterpret_cast<const char*>(bytes.data()),
+                                             static_cast<unsigned int>(bytes.size()), baseDir);
   } catch (const std::exception& e) {
     throw SceneError(path, std::string("bad glTF: ") + e.what());
   }

@@ -3,6 +3,9 @@
 // Scene, read with tinygltf. glTF has no lines, so errors name the file and
 // the object: "FILE: mesh 2 primitive 0: index 99 out of range (12
 // vertices)"; tinygltf's own parse errors are passed on after the file name.
+// Only regular files are read, the scene and its external buffers alike (a
+// FIFO, a directory or /dev/zero is an error), and JSON nested deeper than
+// 256 levels is refused (tinygltf would recurse off the stack).
 //
 // Geometry: the default scene's node trees (every root node when the file
 // has no scenes), depth first in node order, each node's mesh in world space

@@ -303,7 +303,14 @@ Scene loadObj(const fs::path& path) {
   scene.triangles.reserve(checker.triangles());
   scene.materialIds.reserve(checker.triangles());
   if (allNormals) scene.vertexNormals.reserve(checker.triangles());
-  for (const tinyobj::material_t& m : objMaterials) scene.materials.push_back(toMaterial(m));
+  for (const tinyobj::material_t& m : objMaterials) {
+    // tinyobjloader reads a colour such as 1e39 as infinity.
+    const Material material = toMaterial(m);
+    const float sum = material.diffuse.r + material.diffuse.g + material.diffuse.b + material.mirror.r +
+                      material.mirror.g + material.mirror.b;
+    if (!std::isfinite(sum)) throw SceneError(path, "material '" + m.name + "': a colour is not a finite float");
+    scene.materials.push_back(material);
+  }
   // Faces without a material share one default, appended after the file's.
   const auto defaultId = static_cast<uint32_t>(scene.materials.size());
   bool usesDefault = false;

@@ -36,6 +36,16 @@ struct CameraSpec {
 
 struct Scene {
   std::string name;
+  // Every vertex is finite. The rule for non-finite input, in every loader:
+  // reject, never drop. A NaN or infinite number in the file, or a vertex that
+  // becomes non-finite only after transforms or tessellation (an AFF `xs`
+  // scale of 1e30, nested transforms, glTF node matrices whose product
+  // overflows), throws SceneError naming the file and the line of the
+  // command that made the triangle (glTF: "FILE: mesh M primitive P: ...").
+  // Zero-area and duplicate triangles are kept as valid geometry: the first
+  // is never hit; of duplicates, every structure reports the same t, and
+  // which one's id depends on its traversal order (deterministic per
+  // structure; brute force reports the lowest).
   std::vector<Triangle> triangles;  // scene order: the index is the hit id
   // Either empty (shade with the geometric normal) or one entry per triangle.
   std::vector<std::array<glm::vec3, 3>> vertexNormals;
@@ -48,6 +58,10 @@ struct Scene {
   // Benchmarked from this one view only (thesis 10.1.1: Robots, Kitchen and
   // the Cornell box); other scenes follow the camera path for -n angles.
   bool fixedView = false;
+  // The scene's coordinates (vertices, camera, light) are the file's times
+  // 2^scaleExponent: loadScene brings far-off scales into single precision's
+  // safe range by this exact factor (scenes/scene_scale.h); 0 for most scenes.
+  int scaleExponent = 0;
 
   Aabb bounds() const;
   bool hasVertexNormals() const { return !vertexNormals.empty(); }

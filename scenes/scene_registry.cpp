@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
+#include <limits>
 
 #include "scenes/aff_loader.h"
 #include "scenes/cornell_box.h"
@@ -15,6 +17,7 @@
 #include "scenes/gltf_loader.h"
 #include "scenes/obj_loader.h"
 #include "scenes/scene_error.h"
+#include "scenes/scene_scale.h"
 
 namespace passtrace {
 namespace {
@@ -27,15 +30,26 @@ const fs::path kBunnyPath = "/usr/share/glmark2/models/bunny.obj";
 // The thesis's scene numbers (-s 0..4), table 1's order.
 const std::array<const char*, 5> kThesisOrder = {"cows", "robots", "kitchen", "bunny", "cornell"};
 
-float radiusOf(const Aabb& box) {
-  float r = 0.5f * glm::length(box.extent());
-  if (!(r > 0.0f) || !std::isfinite(r)) r = 1.0f;  // a degenerate mesh still gets a usable camera
-  return r;
+// Centre and radius in double: in float the extent of a scene near FLT_MAX
+// overflows and the squared extent of a tiny one underflows to 0.
+glm::dvec3 centreOf(const Aabb& box) {
+  return box.empty() ? glm::dvec3(0.0) : 0.5 * (glm::dvec3(box.min) + glm::dvec3(box.max));
 }
 
-glm::vec3 centreOf(const Aabb& box) {
-  const glm::vec3 c = box.center();
-  return (box.empty() || !std::isfinite(c.x + c.y + c.z)) ? glm::vec3(0.0f) : c;
+double radiusOf(const Aabb& box) {
+  if (box.empty()) return 1.0;
+  const double r = 0.5 * glm::length(glm::dvec3(box.max) - glm::dvec3(box.min));
+  if (r > 0.0) return r;
+  // All in one point: a view from a little away, relative to its distance
+  // from the origin so that the eye does not round onto the point.
+  const glm::dvec3 c = glm::abs(centreOf(box));
+  return std::max(1.0, 1e-3 * std::max({c.x, c.y, c.z}));
+}
+
+// May overflow to infinity near FLT_MAX; loadScene then frames again after
+// rescaling (scene_scale.h).
+glm::vec3 framedPoint(const Aabb& box, const glm::dvec3& offset) {
+  return glm::vec3(centreOf(box) + radiusOf(box) * offset);
 }
 
 // A view and light framed on the bounds, and a dark blue-grey background.
@@ -92,14 +106,10 @@ Scene loadBart(const std::string& name, const fs::path& relative, const SceneOpt
 }  // namespace
 
 CameraSpec framedCamera(const Aabb& box) {
-  const glm::vec3 centre = centreOf(box);
-  const float r = radiusOf(box);
-  return CameraSpec{centre + r * glm::vec3(0.0f, 0.1f, 2.6f), centre, {0.0f, 1.0f, 0.0f}, 45.0f};
+  return CameraSpec{framedPoint(box, {0.0, 0.1, 2.6}), glm::vec3(centreOf(box)), {0.0f, 1.0f, 0.0f}, 45.0f};
 }
 
-PointLight framedLight(const Aabb& box) {
-  return PointLight{centreOf(box) + radiusOf(box) * glm::vec3(1.5f, 2.5f, 2.0f), glm::vec3(1.0f)};
-}
+PointLight framedLight(const Aabb& box) { return PointLight{framedPoint(box, {1.5, 2.5, 2.0}), glm::vec3(1.0f)}; }
 
 fs::path defaultBartDir() {
   if (const char* env = std::getenv("PASSTRACE_BART_DIR"); env != nullptr && *env != '\0') return fs::path(env);
@@ -113,11 +123,24 @@ fs::path defaultBartDir() {
   return {};
 }
 
+namespace {
+Scene loadUnscaled(const std::string& nameOrPath, const SceneOptions& options);
+void bringIntoSafeRange(Scene& scene, const std::string& source);
+}  // namespace
+
 std::vector<std::string> builtinSceneNames() { return {kThesisOrder.begin(), kThesisOrder.end()}; }
 
 Scene loadScene(const std::string& nameOrPath) { return loadScene(nameOrPath, SceneOptions{}); }
 
 Scene loadScene(const std::string& nameOrPath, const SceneOptions& options) {
+  Scene scene = loadUnscaled(nameOrPath, options);
+  bringIntoSafeRange(scene, nameOrPath);
+  return scene;
+}
+
+namespace {
+
+Scene loadUnscaled(const std::string& nameOrPath, const SceneOptions& options) {
   if (nameOrPath.size() == 1 && nameOrPath[0] >= '0' && nameOrPath[0] <= '4')
     return loadScene(kThesisOrder[static_cast<std::size_t>(nameOrPath[0] - '0')], options);
   if (nameOrPath == "cornell") {
@@ -126,6 +149,7 @@ Scene loadScene(const std::string& nameOrPath, const SceneOptions& options) {
     return scene;
   }
   if (nameOrPath == "cows") return makeCowsScene();
+  if (nameOrPath == "spheres") return makeSphereField(options.triangles);
   if (nameOrPath == "robots") return loadBart("robots", fs::path("robots") / "aff" / "Robot.aff", options);
   if (nameOrPath == "kitchen") return loadBart("kitchen", fs::path("kitchen") / "aff" / "kitchen.aff", options);
   if (nameOrPath == "bunny") {
@@ -142,7 +166,42 @@ Scene loadScene(const std::string& nameOrPath, const SceneOptions& options) {
   std::error_code ignored;
   if (fs::exists(path, ignored) || path.has_extension()) return loadFile(path, options);
   throw SceneError("unknown scene '" + nameOrPath +
-                   "' (expected cows, robots, kitchen, bunny, cornell, 0-4 or a file path)");
+                   "' (expected cows, robots, kitchen, bunny, cornell, spheres, 0-4 or a file path)");
 }
+
+bool isFinite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// Rescales by 2^k (scene_scale.h). A view or light that is not finite after
+// it is framed again on the rescaled bounds: silently where the framing
+// itself overflowed (near FLT_MAX), with a warning where the file's own view
+// or light lies too far from tiny geometry.
+void bringIntoSafeRange(Scene& scene, const std::string& source) {
+  const Aabb before = scene.bounds();
+  const float largest = before.empty() ? 0.0f
+                                       : std::max({std::fabs(before.min.x), std::fabs(before.min.y),
+                                                   std::fabs(before.min.z), std::fabs(before.max.x),
+                                                   std::fabs(before.max.y), std::fabs(before.max.z)});
+  if (largest > 0.0f && largest < std::numeric_limits<float>::min())
+    std::cerr << "passtrace: warning: " << source << ": every coordinate is subnormal (largest " << largest
+              << "): vertices keep fewer than 24 bits of precision\n";
+  const bool viewWasFinite = isFinite(scene.camera.eye) && isFinite(scene.camera.lookAt);
+  const bool lightWasFinite = isFinite(scene.light.position);
+  const int k = normalizeSceneScale(scene);
+  const CameraSpec& c = scene.camera;
+  const bool reframeView = !isFinite(c.eye) || !isFinite(c.lookAt) || c.eye == c.lookAt;
+  const bool reframeLight = !isFinite(scene.light.position);
+  if ((reframeView && viewWasFinite) || (reframeLight && lightWasFinite))
+    std::cerr << "passtrace: warning: " << source << ": the file's " << (reframeView && viewWasFinite ? "view" : "light")
+              << " does not fit in single precision after rescaling the scene by 2^" << k
+              << "; it is framed on the scene's bounds\n";
+  if (reframeView) {
+    const CameraSpec framed = framedCamera(scene.bounds());
+    scene.camera.eye = framed.eye;
+    scene.camera.lookAt = framed.lookAt;
+  }
+  if (reframeLight) scene.light.position = framedLight(scene.bounds()).position;
+}
+
+}  // namespace
 
 }  // namespace passtrace

@@ -1,6 +1,6 @@
 #pragma once
 // Resolves a scene argument: a built-in name ("cornell", "bunny", "cows",
-// "robots", "kitchen"), a thesis scene number ("0".."4" = cows, robots,
+// "robots", "kitchen", and the procedural "spheres" of any size), a thesis scene number ("0".."4" = cows, robots,
 // kitchen, bunny, cornell, the order of thesis table 1) or a path to a scene
 // file, dispatched by extension (.obj, .aff, .nff, .gltf, .glb).
 
@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "scenes/scene.h"
+#include "scenes/sphere_field.h"
 
 namespace passtrace {
 
@@ -18,6 +19,8 @@ struct SceneOptions {
   std::filesystem::path bartDir;
   // The time at which AFF animated transforms are evaluated (--time).
   float time = 0.0f;
+  // The size of the procedural "spheres" scene (--triangles; sphere_field.h).
+  uint64_t triangles = kSphereFieldDefaultTriangles;
 };
 
 // $PASSTRACE_BART_DIR when set (even if it does not exist, so that a wrong
@@ -29,7 +32,9 @@ std::filesystem::path defaultBartDir();
 // Throws SceneError for an unknown name, an unsupported format, missing BART
 // scenes or a bad file. OBJ scenes (the bunny included) get a view and light
 // framed on their bounds; AFF/NFF and glTF scenes keep their own view and
-// light where the file has them and are framed otherwise.
+// light where the file has them and are framed otherwise. Every scene is then
+// rescaled by an exact power of two when its coordinates lie outside single
+// precision's safe range (scenes/scene_scale.h; Scene::scaleExponent).
 Scene loadScene(const std::string& nameOrPath, const SceneOptions& options);
 Scene loadScene(const std::string& nameOrPath);  // default options
 

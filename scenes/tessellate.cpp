@@ -7,9 +7,12 @@
 namespace passtrace {
 
 glm::vec3 faceNormal(const Triangle& t, const glm::vec3& fallback) {
-  const glm::vec3 n = glm::cross(t.v1 - t.v0, t.v2 - t.v0);
-  const float len = glm::length(n);
-  return (len > 0.0f && std::isfinite(len)) ? n / len : fallback;
+  // In double: in float the cross product of huge edges overflows and that of
+  // tiny ones underflows, which would give such triangles the fallback.
+  const glm::dvec3 v0(t.v0);
+  const glm::dvec3 n = glm::cross(glm::dvec3(t.v1) - v0, glm::dvec3(t.v2) - v0);
+  const double len = glm::length(n);
+  return (len > 0.0 && std::isfinite(len)) ? glm::vec3(n / len) : fallback;
 }
 
 void tessellateSphere(const glm::vec3& centre, float radius, TriangleList& out, int slices, int stacks) {

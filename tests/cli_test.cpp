@@ -14,58 +14,16 @@
 #include "render/camera.h"
 #include "render/image_output.h"
 #include "scenes/scene_registry.h"
+#include "tests/cli_support.h"
 
 namespace fs = std::filesystem;
 
 namespace passtrace {
 namespace {
 
-struct RunResult {
-  int status;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-class Cli : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("passtrace_cli_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  RunResult run(const std::string& args, const std::string& env = "") {
-    const std::string cmd = env + " " + PASSTRACE_BINARY + " " + args + " > " + (dir_ / "stdout").string() + " 2> " +
-                            (dir_ / "stderr").string() + " < /dev/null";
-    const int raw = std::system(cmd.c_str());
-    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(dir_ / "stdout"), slurp(dir_ / "stderr")};
-  }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  // Files in the directory other than the captured streams.
-  std::vector<std::string> outputs() const {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(dir_))
-      if (e.path().filename() != "stdout" && e.path().filename() != "stderr" && e.path().filename() != "bad.obj")
-        names.push_back(e.path().filename().string());
-    return names;
-  }
-  void expectOneLineError(const RunResult& r, const std::string& mention) {
-    EXPECT_NE(r.status, 0);
-    EXPECT_EQ(r.err.rfind("passtrace: error: ", 0), 0u) << r.err;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-    EXPECT_NE(r.err.find(mention), std::string::npos) << "expected '" << mention << "' in: " << r.err;
-    EXPECT_TRUE(outputs().empty()) << "an output was left behind: " << outputs().front();
-  }
-  fs::path dir_;
-};
+using test::RunResult;
+using test::slurp;
+using Cli = test::CliTest;
 
 TEST_F(Cli, HelpExplainsEveryThesisFlag) {
   const RunResult r = run("--help");
@@ -161,30 +119,7 @@ TEST_F(Cli, CameraPathGivesDistinctViewsExceptForFixedViewScenes) {
 }
 
 // The hit buffers of both ray tracers against brute force on the contract's rays.
-void expectHitsMatchBruteForce(const std::string& file, const Scene& scene, int size) {
-  int w = 0, h = 0;
-  const std::vector<HitRecord> hits = readHitBuffer(file, w, h);
-  ASSERT_EQ(w, size);
-  ASSERT_EQ(h, size);
-  const CameraBasis basis = makeCameraBasis(scene.camera, w, h);
-  int found = 0, mismatches = 0;
-  for (int py = 0; py < h; ++py)
-    for (int px = 0; px < w; ++px) {
-      const HitRecord& got = hits[size_t(py) * w + px];
-      const Hit expected = intersectBruteForce(scene.triangles, primaryRay(basis, px, py), false);
-      found += expected.found();
-      if (got.id == expected.id) {
-        if (expected.found()) EXPECT_NEAR(got.t, expected.t, 1e-5f * expected.t);
-        else EXPECT_EQ(got.t, kInfinity);
-        continue;
-      }
-      // Two triangles met at the same t (a shared edge or vertex).
-      const bool tie = expected.found() && got.id != kNoHit && std::abs(got.t - expected.t) <= 1e-5f * expected.t;
-      if (!tie) ++mismatches;
-    }
-  EXPECT_EQ(mismatches, 0);
-  EXPECT_GT(found, size * size / 10);
-}
+using test::expectHitsMatchBruteForce;
 
 TEST_F(Cli, HitBuffersOfBothRaytracersEqualBruteForce) {
   const Scene bunny = loadScene("bunny");

@@ -383,7 +383,7 @@ TEST(SceneRegistry, LoadsCornell) {
 
 TEST(SceneRegistry, UnknownName) {
   EXPECT_EQ(errorOf([] { loadScene("foo"); }),
-            "unknown scene 'foo' (expected cows, robots, kitchen, bunny, cornell, 0-4 or a file path)");
+            "unknown scene 'foo' (expected cows, robots, kitchen, bunny, cornell, spheres, 0-4 or a file path)");
 }
 
 TEST(SceneRegistry, UnsupportedFormat) {
