@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# Fuzzes the scene loaders (OBJ, AFF/NFF, glTF) and the command-line parser
+# with libFuzzer under AddressSanitizer and UBSan: installs clang 14 if
+# missing, builds tests/fuzz/ in build-fuzz/, then runs each target for the
+# given seconds (default 60) on a copy of its seed corpus. Exits non-zero
+# naming the target and the reproducer when any target finds something; a
+# reproducer is fixed at its root and kept in tests/data/fuzz_regressions/.
+#   bash scripts/fuzz.sh [seconds-per-target]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds="${1:-60}"
+
+packages=(clang-14 libclang-rt-14-dev cmake make libglm-dev libcli11-dev nlohmann-json3-dev
+          libtinyobjloader-dev libtinygltf-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "fuzz: installing ${missing[*]}"
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo=sudo
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}"
+fi
+
+launcher=()
+command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+cmake -S tests/fuzz -B build-fuzz -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_C_COMPILER=clang-14 "${launcher[@]}" > /dev/null
+cmake --build build-fuzz -j"$(nproc)"
+
+# Corpus copies and findings live outside the source tree.
+work="build-fuzz/run"
+rm -rf "$work"
+# The targets' scratch files too (tests/fuzz/fuzz_input_file.h).
+mkdir -p "$work/tmp"
+export TMPDIR="$PWD/$work/tmp"
+failed=()
+# target:max_len (bytes). Text scenes need room for a few commands; glTF for a
+# JSON document with an embedded buffer; a command line is short.
+for entry in obj:4096 aff:8192 gltf:16384 cli:1024; do
+  target="${entry%%:*}"
+  mkdir -p "$work/corpus-$target" "$work/findings-$target"
+  cp tests/fuzz/corpus/"$target"/* "$work/corpus-$target/"
+  echo "fuzz: $target for ${seconds}s"
+  if ! "build-fuzz/fuzz_$target" "$work/corpus-$target" -dict="tests/fuzz/$target.dict" \
+      -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len="${entry#*:}" \
+      -artifact_prefix="$work/findings-$target/" -print_final_stats=1 > "$work/$target.log" 2>&1; then
+    tail -n 40 "$work/$target.log"
+    findings="$(ls "$work/findings-$target"/* 2>/dev/null | tr '\n' ' ' || true)"
+    failed+=("$target: ${findings}(log: $work/$target.log)")
+  fi
+  grep -E "^stat::number_of_executed_units|^Done" "$work/$target.log" | sed "s/^/fuzz: $target: /" || true
+done
+
+if ((${#failed[@]})); then
+  printf 'fuzz: FOUND %s\n' "${failed[@]}" >&2
+  exit 1
+fi
+echo "fuzz: no findings"
