@@ -89,6 +89,9 @@ def main():
         # else must have worked.
         bad = [r["key"] for r in runs if r.get("status") != "ok" and r.get("renderer") != "embree"]
         check(not bad, f"every GPU and CPU run succeeded (failed: {bad})")
+        # scripts/sanitize.sh makes every sanitizer report end passtrace with status 23.
+        reports = [r["key"] for r in runs if r.get("returncode") == 23]
+        check(not reports, f"no run ended in a sanitizer report (exit status 23: {reports})")
         for h in results.get("heatmaps", []):
             if h.get("status") == "ok":
                 check((out / h["heatmap"]).is_file(), f"heat map {h['heatmap']} written")
