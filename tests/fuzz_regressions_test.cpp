@@ -21,10 +21,8 @@
 
 #include <gtest/gtest.h>
 
-#include "scenes/aff_loader.h"
-#include "scenes/gltf_loader.h"
-#include "scenes/obj_loader.h"
 #include "scenes/scene_error.h"
+#include "scenes/scene_registry.h"
 #include "tests/fuzz/cli_input.h"
 #include "tests/fuzz/scene_invariants.h"
 
@@ -81,20 +79,22 @@ class FuzzRegressions : public ::testing::Test {
 
 TEST_F(FuzzRegressions, ObjInputsEndCleanly) {
   for (const fs::path& input : inputsIn(dir_ / "obj", {".obj"}))
-    EXPECT_EQ(outcome(input, [](const fs::path& p) { return loadObj(p); }), "") << input;
+    EXPECT_EQ(outcome(input, [](const fs::path& p) { return loadScene(p.string()); }), "") << input;
 }
 
 TEST_F(FuzzRegressions, AffInputsEndCleanly) {
   for (const fs::path& input : inputsIn(dir_ / "aff", {".aff", ".nff"})) {
     // The animation time fuzz_aff derives from the input's length.
     const float time = static_cast<float>(fs::file_size(input) % 17) * 0.25f;
-    EXPECT_EQ(outcome(input, [&](const fs::path& p) { return loadAff(p, time); }), "") << input;
+    SceneOptions options;
+    options.time = time;
+    EXPECT_EQ(outcome(input, [&](const fs::path& p) { return loadScene(p.string(), options); }), "") << input;
   }
 }
 
 TEST_F(FuzzRegressions, GltfInputsEndCleanly) {
   for (const fs::path& input : inputsIn(dir_ / "gltf", {".gltf", ".glb"}))
-    EXPECT_EQ(outcome(input, [](const fs::path& p) { return loadGltf(p); }), "") << input;
+    EXPECT_EQ(outcome(input, [](const fs::path& p) { return loadScene(p.string()); }), "") << input;
 }
 
 TEST_F(FuzzRegressions, CommandLinesEndCleanly) {

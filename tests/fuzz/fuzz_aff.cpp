@@ -1,4 +1,6 @@
-// libFuzzer target: AFF and NFF through loadAff (scenes/aff_loader.h). One
+// libFuzzer target: AFF and NFF through loadScene, the command line's path
+// (loadAff, then framing and the power-of-two rescaling that make a scene
+// near FLT_MAX renderable; loadAff alone may leave its framed view infinite). One
 // parser reads both and ignores the extension, so every input is an .aff.
 // The animation time follows the input's length (0 to 4 in quarters), so
 // keyframes are evaluated inside and past their range without spending
@@ -6,7 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "scenes/aff_loader.h"
+#include "scenes/scene_registry.h"
 #include "tests/fuzz/fuzz_input_file.h"
 #include "tests/fuzz/fuzz_loader_target.h"
 
@@ -21,6 +23,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   (void)once;
   const float time = static_cast<float>(size % 17) * 0.25f;
   const auto path = fuzz::writeInputFile("input.aff", data, size);
-  fuzz::requireCleanOutcome(path, [&](const auto& p) { return loadAff(p, time); });
+  fuzz::requireCleanOutcome(path, [&](const auto& p) { SceneOptions options;
+    options.time = time;
+    return loadScene(p.string(), options);
+  });
   return 0;
 }

@@ -1,11 +1,12 @@
-// libFuzzer target: glTF through loadGltf (scenes/gltf_loader.h); input that
+// libFuzzer target: glTF through loadScene (loadGltf, framing, rescaling: the
+// command line's path); input that
 // starts with the binary magic "glTF" is loaded as .glb, anything else as
 // .gltf (JSON).
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
 
-#include "scenes/gltf_loader.h"
+#include "scenes/scene_registry.h"
 #include "tests/fuzz/fuzz_input_file.h"
 #include "tests/fuzz/fuzz_loader_target.h"
 
@@ -25,6 +26,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   (void)once;
   const bool binary = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
   const auto path = fuzz::writeInputFile(binary ? "input.glb" : "input.gltf", data, size);
-  fuzz::requireCleanOutcome(path, [](const auto& p) { return loadGltf(p); });
+  fuzz::requireCleanOutcome(path, [](const auto& p) { return loadScene(p.string()); });
   return 0;
 }

@@ -1,8 +1,9 @@
-// libFuzzer target: Wavefront OBJ through loadObj (scenes/obj_loader.h).
+// libFuzzer target: Wavefront OBJ through loadScene (loadObj, framing,
+// rescaling: the command line's path).
 #include <cstddef>
 #include <cstdint>
 
-#include "scenes/obj_loader.h"
+#include "scenes/scene_registry.h"
 #include "tests/fuzz/fuzz_input_file.h"
 #include "tests/fuzz/fuzz_loader_target.h"
 
@@ -15,6 +16,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     return true;
   }();
   (void)once;
-  fuzz::requireCleanOutcome(fuzz::writeInputFile("input.obj", data, size), [](const auto& p) { return loadObj(p); });
+  fuzz::requireCleanOutcome(fuzz::writeInputFile("input.obj", data, size), [](const auto& p) { return loadScene(p.string()); });
   return 0;
 }
