@@ -4,8 +4,8 @@
 
 #include <span>
 
-#include "accel/geometry.h"
-#include "accel/triangle_test.h"
+#include "accel/geometry/geometry.h"
+#include "accel/geometry/triangle_test.h"
 #include "accel/traversal_stats.h"
 
 namespace passtrace {

@@ -5,11 +5,11 @@
 #include <stdexcept>
 
 #include "accel/brute_force.h"
-#include "accel/bvh.h"
-#include "accel/bvh_traversal.h"
-#include "accel/escape_sequence.h"
+#include "accel/bvh/bvh.h"
+#include "accel/bvh/bvh_traversal.h"
+#include "accel/bvh/escape_sequence.h"
 #include "accel/grid_accelerators.h"
-#include "accel/kd_accelerator.h"
+#include "accel/kd/kd_accelerator.h"
 
 namespace passtrace {
 namespace {

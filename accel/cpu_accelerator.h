@@ -19,12 +19,12 @@
 #include <span>
 #include <string>
 
-#include "accel/bvh.h"
-#include "accel/escape_sequence.h"
-#include "accel/geometry.h"
-#include "accel/kay_kajiya_builder.h"
+#include "accel/bvh/bvh.h"
+#include "accel/bvh/escape_sequence.h"
+#include "accel/geometry/geometry.h"
+#include "accel/bvh/kay_kajiya_builder.h"
 #include "accel/traversal_stats.h"
-#include "accel/triangle_test.h"
+#include "accel/geometry/triangle_test.h"
 
 namespace passtrace {
 

@@ -4,14 +4,14 @@
 #include <stdexcept>
 #include <string>
 
-#include "accel/bvh.h"
-#include "accel/bvh_traversal.h"
-#include "accel/escape_sequence.h"
-#include "accel/goldsmith_salmon_builder.h"
-#include "accel/grid_traversal.h"
-#include "accel/octree.h"
-#include "accel/uniform_grid.h"
-#include "accel/uniform_grid_builder.h"
+#include "accel/bvh/bvh.h"
+#include "accel/bvh/bvh_traversal.h"
+#include "accel/bvh/escape_sequence.h"
+#include "accel/bvh/goldsmith_salmon_builder.h"
+#include "accel/grid/grid_traversal.h"
+#include "accel/octree/octree.h"
+#include "accel/grid/uniform_grid.h"
+#include "accel/grid/uniform_grid_builder.h"
 
 namespace passtrace {
 namespace {

@@ -7,7 +7,7 @@
 #include <span>
 
 #include "accel/cpu_accelerator.h"
-#include "accel/geometry.h"
+#include "accel/geometry/geometry.h"
 
 namespace passtrace {
 

@@ -2,14 +2,14 @@
 
 #include <chrono>
 
-#include "accel/grid_stream_traversal.h"
-#include "accel/grid_texels.h"
-#include "accel/kd_accelerator.h"
-#include "accel/kd_stream_traversal.h"
-#include "accel/kd_texels.h"
-#include "accel/kd_tree_builder.h"
+#include "accel/grid/grid_stream_traversal.h"
+#include "accel/grid/grid_texels.h"
+#include "accel/kd/kd_accelerator.h"
+#include "accel/kd/kd_stream_traversal.h"
+#include "accel/kd/kd_texels.h"
+#include "accel/kd/kd_tree_builder.h"
 #include "accel/reference_lists.h"
-#include "accel/uniform_grid_builder.h"
+#include "accel/grid/uniform_grid_builder.h"
 
 namespace passtrace {
 namespace {

@@ -11,9 +11,9 @@
 #include <span>
 
 #include "accel/cpu_accelerator.h"
-#include "accel/grid_texels.h"
-#include "accel/kd_stream_traversal.h"
-#include "accel/kd_texels.h"
+#include "accel/grid/grid_texels.h"
+#include "accel/kd/kd_stream_traversal.h"
+#include "accel/kd/kd_texels.h"
 
 namespace passtrace {
 

@@ -10,7 +10,7 @@
 
 #include "apps/memory_check.h"
 #include "accel/cpu_accelerator.h"
-#include "accel/embree_accelerator.h"
+#include "accel/embree/embree_accelerator.h"
 #include "accel/stream_mirror_accelerators.h"
 #include "render/atomic_file.h"
 #include "render/camera.h"

@@ -3,7 +3,8 @@
 string(REPLACE "|" ";" SOURCES "${SOURCES}")
 set(body "")
 foreach(src ${SOURCES})
-  get_filename_component(name ${src} NAME)
+  # Named by its path inside kernels_glsl/ ("kd/kd_traverse.frag"): #include lines use the same names.
+  file(RELATIVE_PATH name ${KERNEL_DIR} ${src})
   file(READ ${src} text)
   # A raw string cannot contain its own closing delimiter; GLSL never will.
   string(APPEND body "    {\"${name}\", R\"passtrace_glsl(${text})passtrace_glsl\"},\n")

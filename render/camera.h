@@ -7,7 +7,7 @@
 
 #include <stdexcept>
 
-#include "accel/geometry.h"
+#include "accel/geometry/geometry.h"
 #include "scenes/scene.h"
 
 namespace passtrace {

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "accel/geometry.h"
+#include "accel/geometry/geometry.h"
 #include "render/image_output.h"
 
 namespace passtrace {

@@ -3,7 +3,7 @@
 #include <chrono>
 
 #include "render/camera.h"
-#include "render/ray_stream_layout.h"
+#include "accel/ray_stream_layout.h"
 #include "render/scene_streams.h"
 #include "render/shading.h"
 #include "stream/texel_address.h"

@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "render/frame_result.h"
-#include "render/gpu_traversal.h"
+#include "accel/gpu_traversal.h"
 #include "stream/const_input_stream.h"
 #include "stream/inout_stream.h"
 #include "stream/stream_kernel.h"

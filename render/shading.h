@@ -3,8 +3,8 @@
 // kernels_glsl/shade.frag applies them on the GPU; the CPU renderer calls
 // this for every element after each trace.
 
-#include "accel/geometry.h"
-#include "render/ray_stream_layout.h"
+#include "accel/geometry/geometry.h"
+#include "accel/ray_stream_layout.h"
 #include "scenes/scene.h"
 
 namespace passtrace {

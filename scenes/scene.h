@@ -10,7 +10,7 @@
 
 #include <glm/glm.hpp>
 
-#include "accel/geometry.h"
+#include "accel/geometry/geometry.h"
 
 namespace passtrace {
 

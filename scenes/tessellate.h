@@ -16,7 +16,7 @@
 
 #include <glm/glm.hpp>
 
-#include "accel/geometry.h"
+#include "accel/geometry/geometry.h"
 
 namespace passtrace {
 

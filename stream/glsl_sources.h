@@ -10,7 +10,7 @@
 namespace passtrace {
 
 struct GlslFile {
-  const char* name;  // file name inside kernels_glsl/, e.g. "intersect.glsl"
+  const char* name;  // path inside kernels_glsl/, e.g. "intersect.glsl" or "kd/kd_traverse.frag"
   const char* text;
 };
 

@@ -14,11 +14,11 @@
 #include <stdexcept>
 
 #include "accel/brute_force.h"
-#include "accel/bvh.h"
-#include "accel/bvh_traversal.h"
+#include "accel/bvh/bvh.h"
+#include "accel/bvh/bvh_traversal.h"
 #include "accel/cpu_accelerator.h"
-#include "accel/escape_sequence.h"
-#include "accel/kay_kajiya_builder.h"
+#include "accel/bvh/escape_sequence.h"
+#include "accel/bvh/kay_kajiya_builder.h"
 #include "tests/bvh_checks.h"
 #include "tests/test_meshes.h"
 

@@ -3,8 +3,8 @@
 
 #include <span>
 
-#include "accel/bvh.h"
-#include "accel/geometry.h"
+#include "accel/bvh/bvh.h"
+#include "accel/geometry/geometry.h"
 
 namespace passtrace::test {
 

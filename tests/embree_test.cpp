@@ -16,7 +16,7 @@
 
 #include "accel/brute_force.h"
 #include "accel/cpu_accelerator.h"
-#include "accel/embree_accelerator.h"
+#include "accel/embree/embree_accelerator.h"
 #include "scenes/scene_error.h"
 #include "scenes/scene_registry.h"
 #include "tests/test_meshes.h"

@@ -2,7 +2,7 @@
 
 #include <cstdlib>
 
-#include "render/ray_stream_layout.h"
+#include "accel/ray_stream_layout.h"
 #include "stream/texel_address.h"
 
 namespace passtrace::test {

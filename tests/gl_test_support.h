@@ -8,8 +8,8 @@
 
 #include <gtest/gtest.h>
 
-#include "accel/geometry.h"
-#include "render/gpu_traversal.h"
+#include "accel/geometry/geometry.h"
+#include "accel/gpu_traversal.h"
 #include "stream/gl_context.h"
 #include "stream/inout_stream.h"
 #include "stream/stream_kernel.h"

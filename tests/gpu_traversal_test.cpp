@@ -6,7 +6,7 @@
 
 #include "accel/brute_force.h"
 #include "accel/stream_mirror_accelerators.h"
-#include "render/gpu_traversal.h"
+#include "accel/gpu_traversal.h"
 #include "tests/gl_test_support.h"
 #include "tests/test_meshes.h"
 

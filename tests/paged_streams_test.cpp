@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "accel/brute_force.h"
-#include "render/gpu_traversal.h"
+#include "accel/gpu_traversal.h"
 #include "scenes/scene_registry.h"
 #include "scenes/sphere_field.h"
 #include "stream/const_input_stream.h"

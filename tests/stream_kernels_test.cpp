@@ -5,12 +5,12 @@
 
 #include <gtest/gtest.h>
 
-#include "accel/bvh_traversal.h"
-#include "accel/escape_sequence.h"
-#include "accel/kay_kajiya_builder.h"
+#include "accel/bvh/bvh_traversal.h"
+#include "accel/bvh/escape_sequence.h"
+#include "accel/bvh/kay_kajiya_builder.h"
 #include "render/camera.h"
-#include "render/gpu_bvh_traversal.h"
-#include "render/ray_stream_layout.h"
+#include "accel/bvh/gpu_bvh_traversal.h"
+#include "accel/ray_stream_layout.h"
 #include "render/scene_streams.h"
 #include "render/shading.h"
 #include "stream/const_input_stream.h"

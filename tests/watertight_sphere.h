@@ -11,7 +11,7 @@
 
 #include <glm/glm.hpp>
 
-#include "accel/geometry.h"
+#include "accel/geometry/geometry.h"
 
 namespace passtrace::testmesh {
 

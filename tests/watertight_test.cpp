@@ -30,9 +30,9 @@
 
 #include "accel/brute_force.h"
 #include "accel/cpu_accelerator.h"
-#include "accel/embree_accelerator.h"
+#include "accel/embree/embree_accelerator.h"
 #include "accel/stream_mirror_accelerators.h"
-#include "render/gpu_traversal.h"
+#include "accel/gpu_traversal.h"
 #include "render/parallel_for.h"
 #include "tests/gl_test_support.h"
 #include "tests/watertight_sphere.h"

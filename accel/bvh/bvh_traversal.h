@@ -1,0 +1,48 @@
+#pragma once
+// CPU traversals of a BVH in its two forms: the escape-index sequence, walked
+// exactly as the GLSL kernel walks it (thesis Algorithm 4), and the recursive
+// descent of section 9.2 over the tree it was flattened from. Both visit the
+// same nodes in the same order with the same tests, so on one tree they find
+// the same hit and count the same steps; the sequential form only drops the
+// call stack (the "partial evaluation" of section 9.4.2).
+//
+// Both start from best = Hit{t = ray.tMax}: hits at or beyond tMax are
+// ignored. With anyHit, traversal stops at the first triangle hit. `test`
+// picks the ray/triangle test (accel/triangle_test.h). Origin and
+// direction are used as given (no normalisation).
+
+#include <span>
+
+#include "accel/bvh/bvh.h"
+#include "accel/bvh/escape_sequence.h"
+#include "accel/geometry/geometry.h"
+#include "accel/geometry/triangle_test.h"
+#include "accel/traversal_stats.h"
+
+namespace passtrace {
+
+// Where a ray stands in the sequence between passes, as the GPU keeps it in
+// the state and hit surfaces.
+struct EscapeCursor {
+  uint32_t index = 0;  // next texel to read; the sequence size when done
+  Hit best;            // set best.t = ray.tMax before the first step
+  RayStats stats;
+};
+
+// Runs at most maxSteps iterations of algorithm 4 from `cursor`, exactly as
+// one pass of kernels_glsl/bvh_traverse.frag with loop limit maxSteps.
+// Returns true while the ray still has work.
+bool stepEscapeSequence(const EscapeSequence& seq, const Ray& ray, bool anyHit, EscapeCursor& cursor,
+                        uint32_t maxSteps, TriangleTest test = TriangleTest::MollerTrumbore);
+
+// stats, when given, is added to (not reset): one step per box or triangle read.
+Hit traverseEscapeSequence(const EscapeSequence& seq, const Ray& ray, bool anyHit, RayStats* stats = nullptr,
+                           TriangleTest test = TriangleTest::MollerTrumbore);
+
+// Real recursion, one call per visited node, children in stored order; the
+// depth is the tree's depth, so keep to trees of sane depth (K/K trees of
+// real scenes are a few dozen levels).
+Hit traverseBvhRecursive(const Bvh& bvh, std::span<const Triangle> tris, const Ray& ray, bool anyHit,
+                         RayStats* stats = nullptr, TriangleTest test = TriangleTest::MollerTrumbore);
+
+}  // namespace passtrace

@@ -1,0 +1,208 @@
+#include "accel/embree/embree_accelerator.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+
+#include <embree3/rtcore.h>
+
+namespace passtrace {
+namespace {
+
+const char* errorName(RTCError code) {
+  switch (code) {
+    case RTC_ERROR_NONE: return "no error";
+    case RTC_ERROR_UNKNOWN: return "unknown error";
+    case RTC_ERROR_INVALID_ARGUMENT: return "invalid argument";
+    case RTC_ERROR_INVALID_OPERATION: return "invalid operation";
+    case RTC_ERROR_OUT_OF_MEMORY: return "out of memory";
+    case RTC_ERROR_UNSUPPORTED_CPU: return "unsupported CPU";
+    case RTC_ERROR_CANCELLED: return "cancelled";
+  }
+  return "unrecognised error";
+}
+
+// One line: newlines in Embree's message become spaces.
+std::string oneLine(std::string s) {
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s;
+}
+
+// The first error Embree reported through the device's error function. The
+// callback must not throw (it is called from inside Embree, possibly on a
+// worker thread), so it records; construction checks after each step.
+struct ErrorSink {
+  std::mutex mutex;
+  RTCError code = RTC_ERROR_NONE;
+  std::string message;
+
+  static void callback(void* userPtr, RTCError code, const char* str) {
+    auto* self = static_cast<ErrorSink*>(userPtr);
+    std::lock_guard lock(self->mutex);
+    if (self->code != RTC_ERROR_NONE) return;  // keep the first
+    self->code = code;
+    self->message = str ? str : "";
+  }
+
+  void throwIfError(const char* during) {
+    std::lock_guard lock(mutex);
+    if (code == RTC_ERROR_NONE) return;
+    std::string line = std::string("embree: ") + errorName(code) + " during " + during;
+    if (!message.empty()) line += ": " + oneLine(message);
+    throw std::runtime_error(line);
+  }
+};
+
+class EmbreeAccelerator final : public CpuAccelerator {
+public:
+  explicit EmbreeAccelerator(std::span<const Triangle> tris) : errors_(std::make_unique<ErrorSink>()) {
+    const auto start = std::chrono::steady_clock::now();
+    if (tris.size() > std::numeric_limits<uint32_t>::max() / 3)
+      throw std::runtime_error("embree: too many triangles (" + std::to_string(tris.size()) +
+                               ") for 32-bit vertex indices");
+
+    device_.reset(rtcNewDevice(nullptr));
+    if (!device_) {
+      const RTCError code = rtcGetDeviceError(nullptr);
+      throw std::runtime_error(std::string("embree: cannot create a device: ") + errorName(code));
+    }
+    rtcSetDeviceErrorFunction(device_.get(), &ErrorSink::callback, errors_.get());
+
+    scene_.reset(rtcNewScene(device_.get()));
+    errors_->throwIfError("scene creation");
+    if (!scene_) throw std::runtime_error("embree: scene creation failed");
+    rtcSetSceneBuildQuality(scene_.get(), RTC_BUILD_QUALITY_HIGH);
+    rtcSetSceneFlags(scene_.get(), RTC_SCENE_FLAG_NONE);
+
+    if (!tris.empty()) {
+      const size_t vertexCount = 3 * tris.size();
+      // Released at the end of this block (or on a throw); the scene keeps its own reference.
+      const std::unique_ptr<RTCGeometryTy, GeometryRelease> owned(
+          rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_TRIANGLE));
+      errors_->throwIfError("geometry creation");
+      if (!owned) throw std::runtime_error("embree: geometry creation failed");
+      RTCGeometry geom = owned.get();
+      // Embree pads its own buffers so that the last vertex may be read with
+      // a 16-byte load; a shared buffer over the caller's triangles would not be.
+      auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+          geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertexCount));
+      auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+          geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), tris.size()));
+      if (!vertices || !indices) {
+        errors_->throwIfError("buffer allocation");
+        throw std::runtime_error("embree: buffer allocation failed");
+      }
+      for (size_t i = 0; i < tris.size(); ++i) {
+        const glm::vec3* v[3] = {&tris[i].v0, &tris[i].v1, &tris[i].v2};
+        for (size_t k = 0; k < 3; ++k) {
+          float* out = vertices + 3 * (3 * i + k);
+          out[0] = v[k]->x;
+          out[1] = v[k]->y;
+          out[2] = v[k]->z;
+          indices[3 * i + k] = static_cast<uint32_t>(3 * i + k);
+        }
+      }
+      rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_HIGH);
+      rtcCommitGeometry(geom);
+      rtcAttachGeometryByID(scene_.get(), geom, 0);
+      errors_->throwIfError("geometry setup");
+    }
+
+    rtcCommitScene(scene_.get());
+    errors_->throwIfError("scene build");
+
+    stats_.name = "embree";
+    stats_.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    stats_.floatsPerTriangle = 0;  // Embree does not report its layout
+    stats_.nodes = 0;
+    stats_.leaves = 0;
+    stats_.references = tris.size();
+    stats_.depth = 0;
+  }
+
+  EmbreeAccelerator(const EmbreeAccelerator&) = delete;
+  EmbreeAccelerator& operator=(const EmbreeAccelerator&) = delete;
+
+  Hit intersect(const Ray& ray, bool anyHit, RayStats* /*stats: Embree counts nothing*/) const override {
+    Hit none{ray.tMax};
+    // Passtrace accepts 0 < t < tMax; Embree accepts tnear < t <= tfar and
+    // wants tnear <= tfar. Nothing can be hit when tMax <= 0 (or is NaN).
+    if (!(ray.tMax > 0.0f)) return none;
+    const float tfar = std::isinf(ray.tMax) ? ray.tMax : std::nextafter(ray.tMax, 0.0f);
+
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+
+    if (anyHit) {
+      RTCRay r{};
+      setRay(r, ray, tfar);
+      rtcOccluded1(scene_.get(), &context, &r);
+      if (r.tfar == -std::numeric_limits<float>::infinity()) return Hit{0.0f, 0.0f, 0.0f, 0u};
+      return none;
+    }
+
+    RTCRayHit rh{};
+    setRay(rh.ray, ray, tfar);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_.get(), &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return none;
+    // Embree compares before dividing (with an approximate reciprocal), so
+    // the reported t could round up to tMax itself; keep it below.
+    return Hit{std::min(rh.ray.tfar, tfar), rh.hit.u, rh.hit.v, rh.hit.primID};
+  }
+
+  std::string name() const override { return "embree"; }
+  AccelStats stats() const override { return stats_; }
+
+private:
+  static void setRay(RTCRay& r, const Ray& ray, float tfar) {
+    r.org_x = ray.origin.x;
+    r.org_y = ray.origin.y;
+    r.org_z = ray.origin.z;
+    r.tnear = 0.0f;
+    r.dir_x = ray.direction.x;
+    r.dir_y = ray.direction.y;
+    r.dir_z = ray.direction.z;
+    r.time = 0.0f;
+    r.tfar = tfar;
+    r.mask = static_cast<unsigned>(-1);
+    r.id = 0;
+    r.flags = 0;
+  }
+
+  struct DeviceRelease {
+    void operator()(RTCDevice d) const { rtcReleaseDevice(d); }
+  };
+  struct GeometryRelease {
+    void operator()(RTCGeometry g) const { rtcReleaseGeometry(g); }
+  };
+  struct SceneRelease {
+    void operator()(RTCScene s) const { rtcReleaseScene(s); }
+  };
+
+  // RAII, in this order so that destruction (reverse order, also after a
+  // constructor throws) releases the scene, then the device, and only then
+  // the error sink the device calls into. errors_ is heap-allocated so the
+  // address registered with the device never moves.
+  std::unique_ptr<ErrorSink> errors_;
+  std::unique_ptr<RTCDeviceTy, DeviceRelease> device_;
+  std::unique_ptr<RTCSceneTy, SceneRelease> scene_;
+  AccelStats stats_;
+};
+
+}  // namespace
+
+std::unique_ptr<CpuAccelerator> makeEmbreeAccelerator(std::span<const Triangle> tris) {
+  return std::make_unique<EmbreeAccelerator>(tris);
+}
+
+}  // namespace passtrace

@@ -1,0 +1,31 @@
+#pragma once
+// kd-restart and kd-backtrack on the GPU (thesis 8.5): an initialisation
+// kernel, then kernels_glsl/kd_traverse.frag pass after pass.
+
+#include <vector>
+
+#include "accel/kd/kd_stream_traversal.h"
+#include "accel/gpu_traversal.h"
+#include "stream/const_input_stream.h"
+#include "stream/stream_kernel.h"
+
+namespace passtrace {
+
+struct KdTexels;
+
+class GpuKdTraversal final : public GpuTraversal {
+ public:
+  GpuKdTraversal(KdStreamVariant variant, const KdTexels& texels, const Aabb& sceneBox,
+                 const std::vector<glm::vec4>& triangleTexels, uint64_t maxStepsPerRay, AccelStats stats,
+                 const GpuTraversalConfig& config);
+  uint64_t trace(InOutStream& rays, uint64_t active, const std::function<uint64_t()>& retire) override;
+  AccelStats stats() const override { return stats_; }
+
+ private:
+  ConstInputStream nodes_, lists_, triangles_;
+  StreamKernel init_, traverse_;
+  AccelStats stats_;
+  uint64_t maxPasses_;
+};
+
+}  // namespace passtrace

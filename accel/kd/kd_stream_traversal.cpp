@@ -1,0 +1,125 @@
+#include "accel/kd/kd_stream_traversal.h"
+
+#include <limits>
+
+#include "accel/reference_lists.h"
+#include "stream/texel_address.h"
+
+namespace passtrace {
+namespace {
+
+using Cursor = KdStreamCursor;
+
+uint32_t stride(const KdStreamData& d) { return d.variant == KdStreamVariant::Backtrack ? 3u : 1u; }
+
+float listEntry(const KdStreamData& d, uint32_t entry) { return d.lists[entry >> 2][int(entry & 3u)]; }
+
+void leafFinished(const KdStreamData& d, Cursor& c, const glm::vec4& leaf) {
+  if (c.best.t <= c.tMax || c.tMax >= c.sceneMax) {
+    c.done = true;
+    return;
+  }
+  c.tMin = c.tMax;
+  c.tMax = c.sceneMax;
+  if (d.variant == KdStreamVariant::Backtrack) {
+    if (leaf.z < 0.0f) {
+      c.done = true;
+    } else {
+      c.node = unpackIndex(leaf.z);
+      c.mode = Cursor::kModeUp;
+    }
+  } else {
+    c.node = 0;
+    c.mode = Cursor::kModeDown;
+  }
+}
+
+void step(const KdStreamData& d, const Ray& ray, const glm::vec3& invDir, bool anyHit, Cursor& c) {
+  ++c.stats.steps;
+  if (c.mode >= 0.0f) {
+    const uint32_t entry = unpackIndex(c.mode);
+    const float id = listEntry(d, entry);
+    if (id < 0.0f) {
+      leafFinished(d, c, d.nodes[stride(d) * c.node]);
+    } else {
+      ++c.stats.triangleTests;
+      const uint32_t t = unpackIndex(id);
+      const Triangle tri{glm::vec3(d.triangles[3 * t]), glm::vec3(d.triangles[3 * t + 1]),
+                         glm::vec3(d.triangles[3 * t + 2])};
+      const bool found = intersectTriangle(ray.origin, ray.direction, tri, t, c.best, d.triangleTest);
+      c.done = found && anyHit;
+      c.mode = packIndex(entry + 1);
+    }
+    return;
+  }
+  if (c.mode == Cursor::kModeUp) {
+    const Aabb box{glm::vec3(d.nodes[stride(d) * c.node + 1]), glm::vec3(d.nodes[stride(d) * c.node + 2])};
+    float tNear, tFar;
+    clipToBox(ray.origin, invDir, box, tNear, tFar);
+    if (tFar > c.tMin) {
+      c.mode = Cursor::kModeDown;
+      c.tMax = std::min(tFar, c.sceneMax);
+    } else {
+      const float parent = d.nodes[stride(d) * c.node].z;
+      if (parent < 0.0f) c.done = true;
+      else c.node = unpackIndex(parent);
+    }
+    return;
+  }
+  const glm::vec4 node = d.nodes[stride(d) * c.node];
+  if (node.w < -1.5f) {  // internal: w = -(axis + 2)
+    const int axis = int(-node.w) - 2;
+    const float split = node.y;
+    const float o = ray.origin[axis];
+    // An origin on the plane never crosses it: it stays on the side it heads to.
+    const float tSplit = o == split ? kInfinity : (split - o) * invDir[axis];
+    const bool belowFirst = o < split || (o == split && ray.direction[axis] <= 0.0f);
+    const uint32_t right = unpackIndex(node.x);
+    const uint32_t first = belowFirst ? c.node + 1 : right;
+    const uint32_t second = belowFirst ? right : c.node + 1;
+    if (tSplit < 0.0f || tSplit >= c.tMax) {
+      c.node = first;
+    } else if (tSplit <= c.tMin) {
+      c.node = second;
+    } else {
+      c.node = first;
+      c.tMax = tSplit;
+    }
+  } else if (node.w >= 0.0f) {  // leaf with triangles
+    c.mode = node.w;
+  } else {  // empty leaf
+    leafFinished(d, c, node);
+  }
+}
+
+}  // namespace
+
+KdStreamCursor kdStreamStart(const KdStreamData& d, const Ray& ray) {
+  Cursor c;
+  c.best.t = ray.tMax;
+  float tNear, tFar;
+  const bool inside = clipToBox(ray.origin, safeInverse(ray.direction), d.sceneBox, tNear, tFar);
+  c.tMin = std::max(tNear, 0.0f);
+  c.tMax = std::min(tFar, ray.tMax);
+  c.sceneMax = c.tMax;
+  c.done = !(inside && c.tMin <= c.tMax) || d.nodes.empty();
+  return c;
+}
+
+bool kdStreamSteps(const KdStreamData& d, const Ray& ray, bool anyHit, KdStreamCursor& c, uint32_t maxSteps) {
+  const glm::vec3 invDir = safeInverse(ray.direction);
+  for (uint32_t i = 0; i < maxSteps && !c.done; ++i) step(d, ray, invDir, anyHit, c);
+  return !c.done;
+}
+
+Hit traverseKdStream(const KdStreamData& d, const Ray& ray, bool anyHit, RayStats* stats) {
+  KdStreamCursor c = kdStreamStart(d, ray);
+  kdStreamSteps(d, ray, anyHit, c, std::numeric_limits<uint32_t>::max());
+  if (stats) {
+    stats->steps += c.stats.steps;
+    stats->triangleTests += c.stats.triangleTests;
+  }
+  return c.best;
+}
+
+}  // namespace passtrace

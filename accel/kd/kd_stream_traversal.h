@@ -1,0 +1,49 @@
+#pragma once
+// kd-restart and kd-backtrack (Foley & Sugerman, thesis 8.2-8.5) on the CPU,
+// step for step as kernels_glsl/kd_traversal.glsl runs them on the GPU, over
+// the same texels (accel/kd_texels.h). They exist to debug the kernels: the
+// GPU and the CPU must find the same hits and count the same steps.
+
+#include <cstdint>
+#include <span>
+
+#include <glm/glm.hpp>
+
+#include "accel/geometry/geometry.h"
+#include "accel/geometry/triangle_test.h"
+#include "accel/traversal_stats.h"
+
+namespace passtrace {
+
+enum class KdStreamVariant { Restart, Backtrack };
+
+// The data the kernel reads: node texels (1 per node for restart, 3 for
+// backtrack), reference-list texels and triangle texels (3 per triangle).
+struct KdStreamData {
+  KdStreamVariant variant = KdStreamVariant::Restart;
+  Aabb sceneBox;
+  std::span<const glm::vec4> nodes, lists, triangles;
+  TriangleTest triangleTest = TriangleTest::MollerTrumbore;  // as the kernel is compiled
+};
+
+// A ray's traversal state between passes (the kernel's state and aux surfaces).
+struct KdStreamCursor {
+  static constexpr float kModeDown = -1.0f, kModeUp = -2.0f;
+  uint32_t node = 0;
+  float mode = kModeDown;  // kModeDown, kModeUp, or a packed list entry
+  float tMin = 0, tMax = 0, sceneMax = 0;
+  Hit best;
+  RayStats stats;
+  bool done = false;
+};
+
+// kd_init.frag: clips the ray to the scene box; done if it misses.
+KdStreamCursor kdStreamStart(const KdStreamData& data, const Ray& ray);
+
+// Up to maxSteps steps of kd_traverse.frag; returns true while work remains.
+bool kdStreamSteps(const KdStreamData& data, const Ray& ray, bool anyHit, KdStreamCursor& cursor, uint32_t maxSteps);
+
+// Start and steps to the end.
+Hit traverseKdStream(const KdStreamData& data, const Ray& ray, bool anyHit, RayStats* stats = nullptr);
+
+}  // namespace passtrace

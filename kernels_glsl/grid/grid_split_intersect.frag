@@ -1,0 +1,32 @@
+// Purcell's split grid traversal, second kernel: one list entry (a triangle
+// test, or the end of the cell's list) for the rays waiting to test
+// triangles; walking rays are discarded.
+#include "texel_address.glsl"
+#include "intersect.glsl"
+#include "ray_kinds.glsl"
+#include "reference_lists.glsl"
+#include "grid/grid_traversal.glsl"
+
+layout(early_fragment_tests) in;
+
+uniform sampler2D uOrigin;
+uniform sampler2D uDirection;
+uniform sampler2D uState;
+uniform sampler2D uHit;
+uniform sampler2D uAux;
+uniform ConstStream uLists;
+uniform ConstStream uTriangles;
+
+layout(location = 0) out vec4 outState;
+layout(location = 1) out vec4 outHit;
+layout(location = 2) out vec4 outAux;
+
+void main() {
+  vec4 aux = readElement(uAux);
+  if (aux.w < 0.0) discard;
+  GridRay ray = loadGridRay(readElement(uOrigin), readElement(uDirection), readElement(uState), aux, readElement(uHit));
+  testNextEntry(ray, uLists, uTriangles);
+  outState = vec4(packIndex(ray.done ? 0u : linearCell(ray.cell)), ray.steps, ray.tests, ray.done ? 0.0 : 1.0);
+  outHit = ray.hit;
+  outAux = vec4(ray.tNext, ray.mode);
+}

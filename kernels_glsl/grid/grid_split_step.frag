@@ -1,0 +1,31 @@
+// Purcell's split grid traversal, first kernel: one cell visit for the rays
+// that are walking the grid; rays waiting to test triangles are discarded, so
+// the occlusion query counts the rays this kernel served.
+#include "texel_address.glsl"
+#include "intersect.glsl"
+#include "ray_kinds.glsl"
+#include "reference_lists.glsl"
+#include "grid/grid_traversal.glsl"
+
+layout(early_fragment_tests) in;
+
+uniform sampler2D uOrigin;
+uniform sampler2D uDirection;
+uniform sampler2D uState;
+uniform sampler2D uHit;
+uniform sampler2D uAux;
+uniform ConstStream uCells;
+
+layout(location = 0) out vec4 outState;
+layout(location = 1) out vec4 outHit;
+layout(location = 2) out vec4 outAux;
+
+void main() {
+  vec4 aux = readElement(uAux);
+  if (aux.w >= 0.0) discard;
+  GridRay ray = loadGridRay(readElement(uOrigin), readElement(uDirection), readElement(uState), aux, readElement(uHit));
+  visitCell(ray, uCells);
+  outState = vec4(packIndex(ray.done ? 0u : linearCell(ray.cell)), ray.steps, ray.tests, ray.done ? 0.0 : 1.0);
+  outHit = ray.hit;
+  outAux = vec4(ray.tNext, ray.mode);
+}
