@@ -1,6 +1,7 @@
 #pragma once
 // The one interface the GPU stream renderer traces through: an acceleration
-// structure's data streams and traversal kernel(s). Implementations run
+// structure's data streams and traversal kernel(s), made by a registry row's
+// stream factory (accel/registry.h). Implementations run
 // passes over the ray stream (render/ray_stream_layout.h) until the cull
 // kernel has retired every active ray.
 
@@ -10,7 +11,6 @@
 #include <string>
 
 #include "accel/cpu_accelerator.h"
-#include "scenes/scene.h"
 
 namespace passtrace {
 
@@ -43,11 +43,6 @@ struct GpuTraversalConfig {
   uint64_t maxPageTexels = 0;
 };
 
-// The GPU column of thesis Table 4: 0 kk-bvh, 1 gs-bvh, 2 kd-restart,
-// 3 kd-backtrack, 4 grid. Both throw std::invalid_argument for anything else.
-std::string gpuAcceleratorName(int number);
-int gpuAcceleratorNumber(const std::string& nameOrNumber);
-
 // Shared by the implementations: binds the ray surfaces a traversal kernel
 // reads (uOrigin, uDirection, uState, uHit, uAux), and runs `kernel` pass
 // after pass until `retire` has retired all `active` rays. More than
@@ -55,8 +50,5 @@ int gpuAcceleratorNumber(const std::string& nameOrNumber);
 void bindRayInputs(StreamKernel& kernel, const InOutStream& rays);
 uint64_t runTraversalPasses(StreamKernel& kernel, uint64_t active, uint64_t maxPasses,
                             const std::function<uint64_t()>& retire);
-
-// Builds GPU accelerator `number` and uploads it.
-std::unique_ptr<GpuTraversal> makeGpuTraversal(int number, const Scene& scene, const GpuTraversalConfig& config);
 
 }  // namespace passtrace

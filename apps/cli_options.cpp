@@ -28,7 +28,7 @@ glm::vec3 parseVector(const std::string& option, const std::string& text) {
 
 }  // namespace
 
-int parseOptions(int argc, char** argv, Options& o) {
+int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter) {
   CLI::App app{"passtrace: ray tracing acceleration structures as OpenGL stream kernels and on the CPU"};
   app.get_formatter()->column_width(34);
   int size = 0;
@@ -36,13 +36,11 @@ int parseOptions(int argc, char** argv, Options& o) {
   float fov = 0.0f;
   app.add_option("-r,--renderer", o.renderer,
                  "0 OpenGL rasterized preview, 1 CPU ray tracer, 2 GPU stream ray tracer, 3 CPU ray tracer through "
-                 "Intel Embree (the baseline; -a is ignored)")
+                 "Intel Embree (the baseline; -a is not read)")
       ->check(CLI::Range(0, 3))->capture_default_str();
   app.add_option("-a,--accel", o.accelerator,
-                 "accelerator, number or name (thesis Table 4). GPU: 0 kk-bvh, 1 gs-bvh, 2 kd-restart, "
-                 "3 kd-backtrack, 4 grid. CPU: 0 kk-bvh, 1 gs-bvh, 2 kd-tree, 3 kd-pbrt, 4 grid, "
-                 "5 kk-bvh-recursive, 6 gs-bvh-recursive, 7 octree, and the GPU kernels' own algorithms "
-                 "kd-restart, kd-backtrack, grid-stream")
+                 "acceleration structure: a name, or its thesis number (Table 4) in the renderer's column; "
+                 "the structures are listed below and by --list")
       ->capture_default_str();
   app.add_option("-s,--scene", o.scene,
                  "scene: 0 cows, 1 robots, 2 kitchen, 3 bunny, 4 cornell (thesis order), by number or name; "
@@ -87,7 +85,8 @@ int parseOptions(int argc, char** argv, Options& o) {
   app.add_option("--fov", fov, "vertical field of view in degrees")->check(CLI::Range(0.001f, 179.999f));
   app.add_option("-o,--output", o.output, "write the image; the format follows the extension (OpenImageIO)");
   app.add_option("--hits", o.hits, "write primary-ray hit records as OpenEXR (t, u, v float; id uint32)");
-  app.add_option("--json", o.json, "write the run's measurements as JSON");
+  app.add_option("--json", o.json, "write the run's measurements as JSON (with --list: the list, to standard output "
+                 "when no FILE is given)")->expected(0, 1);
   app.add_option("--gl-backend", o.glBackend, "auto, egl or osmesa")
       ->check(CLI::IsMember({"auto", "egl", "osmesa"}))->capture_default_str();
   app.add_option("--grid-kernels", o.gridKernels,
@@ -105,6 +104,11 @@ int parseOptions(int argc, char** argv, Options& o) {
   app.add_option("--heatmap", o.heatmap, "write per-pixel traversal steps (all bounces) as a heat map image");
   app.add_flag("--stats", o.stats, "print the structure's memory and the per-ray step statistics");
   app.add_flag("-q,--quiet", o.quiet, "print nothing but errors");
+  app.add_flag("--progress", o.progress, "show loading, building and frame progress on stderr (default: when it is a "
+               "terminal)");
+  app.add_flag("--list", o.list, "list the renderers, structures and scenes (with --json: as JSON) and exit");
+  app.add_flag("--version", o.version, "print the version and exit");
+  if (!helpFooter.empty()) app.footer(std::string(helpFooter));
 
   try {
     app.parse(argc, argv);
@@ -129,6 +133,13 @@ int parseOptions(int argc, char** argv, Options& o) {
   if (!lookAt.empty()) o.lookAt = parseVector("--look-at", lookAt);
   if (!up.empty()) o.up = parseVector("--up", up);
   if (app.count("--fov")) o.fov = fov;
+  if (o.quiet && o.progress) throw std::runtime_error("--quiet and --progress contradict each other");
+  if (app.count("--json") && o.json.empty() && !o.list) throw std::runtime_error("--json: needs a file name");
+  o.listJson = o.list && app.count("--json") > 0;
+  o.accelGiven = app.count("--accel") > 0;
+  for (const char* flag : {"--swap-children", "--gs-tries", "--grid-multiplier", "--kd-min-elements", "--kd-max-depth",
+                           "--grid-kernels", "--loop-limit", "--page-texels", "--triangle-test"})
+    if (app.count(flag)) o.givenFlags.emplace_back(flag);
   return 0;
 }
 

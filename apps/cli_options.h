@@ -4,6 +4,8 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -42,18 +44,27 @@ struct Options {
   std::optional<float> fov;
   std::string output;               // -o
   std::string hits;                 // --hits (OpenEXR)
-  std::string json;                 // --json
+  std::string json;                 // --json FILE (with --list and no FILE: standard output)
   std::string glBackend = "auto";   // --gl-backend
   std::string gridKernels = "merged";  // --grid-kernels: merged or split (Purcell)
   std::string triangleTest = "moller-trumbore";  // --triangle-test: moller-trumbore or watertight
   uint64_t pageTexels = 0;          // --page-texels: GPU data texture size, 0 = the GL's largest
   std::string heatmap;              // --heatmap: per-pixel traversal steps as an image
   bool stats = false;               // --stats: print structure and per-ray statistics
-  bool quiet = false;
+  bool quiet = false;               // -q: print nothing but errors
+  bool progress = false;            // --progress: stages on stderr even when it is no terminal
+  bool list = false;                // --list: renderers, structures and scenes
+  bool listJson = false;            // --list --json: the same as JSON
+  bool version = false;             // --version
+  bool accelGiven = false;          // -a was given
+  // The build and traversal flags given, by long name ("--grid-multiplier"):
+  // the run warns of those the chosen structure does not read.
+  std::vector<std::string> givenFlags;
 };
 
 // Parses argv. Returns 0 with `options` filled, -1 when --help was printed
 // (exit 0), or throws std::runtime_error with a one-line message.
-int parseOptions(int argc, char** argv, Options& options);
+// `helpFooter` ends --help (the structures and scenes, from the registries).
+int parseOptions(int argc, char** argv, Options& options, std::string_view helpFooter = {});
 
 }  // namespace passtrace

@@ -1,16 +1,33 @@
-// passtrace: the command line (tracy's flags, thesis Appendix A).
+// passtrace: the command line (tracy's flags, thesis Appendix A). Parses the
+// options, then hands them to the render session (render/session.h).
 #include <cstdio>
 #include <exception>
+#include <iostream>
 #include <string>
 
 #include "apps/cli_options.h"
-#include "apps/run_render.h"
+#include "apps/run_settings.h"
+#include "passtrace_version.h"
+#include "render/atomic_file.h"
+#include "render/catalog.h"
 
 int main(int argc, char** argv) {
   passtrace::Options options;
   try {
-    if (passtrace::parseOptions(argc, argv, options) < 0) return 0;  // --help
-    passtrace::runPassTrace(options);
+    if (passtrace::parseOptions(argc, argv, options, passtrace::catalogText()) < 0) return 0;  // --help
+    if (options.version) {
+      std::printf("passtrace %s\n", passtrace::kVersion);
+      return 0;
+    }
+    if (options.list) {
+      const std::string text = options.listJson ? passtrace::catalogJson().dump(2) + "\n" : passtrace::catalogText();
+      if (options.json.empty()) std::cout << text;
+      else passtrace::writeTextFile(options.json, text);
+      return 0;
+    }
+    passtrace::Progress progress(passtrace::progressMode(options));
+    const passtrace::RunReport report = passtrace::runSession(passtrace::toRunSettings(options), progress);
+    if (!options.quiet) std::cout << passtrace::summaryText(report, options.stats);
     return 0;
   } catch (const std::exception& e) {
     // Exactly one line, whatever the message (driver logs span several).

@@ -5,8 +5,9 @@
 
 #include <memory>
 
-#include "render/frame_result.h"
 #include "accel/gpu_traversal.h"
+#include "render/frame_result.h"
+#include "scenes/scene.h"
 #include "stream/const_input_stream.h"
 #include "stream/inout_stream.h"
 #include "stream/stream_kernel.h"

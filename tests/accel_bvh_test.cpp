@@ -17,6 +17,8 @@
 #include "accel/bvh/bvh.h"
 #include "accel/bvh/bvh_traversal.h"
 #include "accel/cpu_accelerator.h"
+#include "accel/registry.h"
+#include "tests/registry_helpers.h"
 #include "accel/bvh/escape_sequence.h"
 #include "accel/bvh/kay_kajiya_builder.h"
 #include "tests/bvh_checks.h"
@@ -536,8 +538,8 @@ TEST(BruteForce, TiesGoToTheLowestSceneIndexAndEveryTriangleIsTested) {
 
 TEST(CpuAccelerator, KayKajiyaSequentialAndRecursiveMatchBruteForce) {
   const auto tris = testmesh::uvSphere(16, 24);
-  const auto seq = makeCpuAccelerator(0, tris, {});
-  const auto rec = makeCpuAccelerator(5, tris, {});
+  const auto seq = testing_registry::cpuStructure(0, tris, {});
+  const auto rec = testing_registry::cpuStructure(5, tris, {});
   const auto brute = makeBruteForceAccelerator(tris);
   EXPECT_EQ(seq->name(), "kk-bvh");
   EXPECT_EQ(rec->name(), "kk-bvh-recursive");
@@ -559,8 +561,8 @@ TEST(CpuAccelerator, KayKajiyaSequentialAndRecursiveMatchBruteForce) {
 TEST(CpuAccelerator, StatsDescribeTheTree) {
   const auto tris = testmesh::triangleSoup(32, Aabb{glm::vec3(0), glm::vec3(1)}, 0.2f, 1);
   for (const int number : {0, 5}) {
-    const AccelStats s = makeCpuAccelerator(number, tris, {})->stats();
-    EXPECT_EQ(s.name, acceleratorName(number));
+    const AccelStats s = testing_registry::cpuStructure(number, tris, {})->stats();
+    EXPECT_EQ(s.name, testing_registry::cpuName(number));
     EXPECT_EQ(s.nodes, 63u);
     EXPECT_EQ(s.leaves, 32u);
     EXPECT_EQ(s.references, 32u);
@@ -578,7 +580,7 @@ TEST(CpuAccelerator, BuildConfigReachesTheBuilder) {
   AccelBuildConfig keep, swap;
   keep.kayKajiya.swapProbability = 0.0f;
   swap.kayKajiya.swapProbability = 1.0f;
-  const auto a = makeCpuAccelerator(0, tris, keep), b = makeCpuAccelerator(0, tris, swap);
+  const auto a = testing_registry::cpuStructure(0, tris, keep), b = testing_registry::cpuStructure(0, tris, swap);
   // Same tree, other order: a ray hitting several triangles visits them differently.
   uint64_t stepsA = 0, stepsB = 0;
   for (const Ray& ray : testmesh::makeRays(testmesh::RayKind::OutsideIn, testmesh::boundsOf(tris), 200, 9)) {
@@ -589,35 +591,6 @@ TEST(CpuAccelerator, BuildConfigReachesTheBuilder) {
     stepsB += sb.steps;
   }
   EXPECT_NE(stepsA, stepsB);
-}
-
-TEST(CpuAccelerator, NamesAndNumbersFollowThesisTable4) {
-  const char* names[] = {"kk-bvh", "gs-bvh", "kd-tree", "kd-pbrt", "grid", "kk-bvh-recursive", "gs-bvh-recursive",
-                         "octree"};
-  for (int i = 0; i < 8; ++i) {
-    EXPECT_EQ(acceleratorName(i), names[i]);
-    EXPECT_EQ(acceleratorNumber(names[i]), i);
-    EXPECT_EQ(acceleratorNumber(std::to_string(i)), i);
-  }
-  EXPECT_EQ(acceleratorThesisName(5), "K/K BVH, recursive");
-  EXPECT_THROW(acceleratorName(8), std::invalid_argument);
-  EXPECT_THROW(acceleratorName(-1), std::invalid_argument);
-  try {
-    acceleratorNumber("bogus");
-    FAIL() << "no exception";
-  } catch (const std::invalid_argument& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("bogus"), std::string::npos);
-    EXPECT_NE(what.find("kk-bvh-recursive"), std::string::npos);
-    EXPECT_EQ(what.find('\n'), std::string::npos);
-  }
-  EXPECT_THROW(acceleratorNumber("8"), std::invalid_argument);
-  EXPECT_THROW(acceleratorNumber(""), std::invalid_argument);
-}
-
-TEST(CpuAccelerator, NumbersOutsideTable4Throw) {
-  const auto tris = testmesh::singleTriangle();
-  for (const int number : {-1, 8, 9}) EXPECT_THROW(makeCpuAccelerator(number, tris, {}), std::invalid_argument);
 }
 
 }  // namespace

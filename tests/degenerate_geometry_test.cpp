@@ -19,7 +19,8 @@
 #include "accel/brute_force.h"
 #include "accel/cpu_accelerator.h"
 #include "accel/embree/embree_accelerator.h"
-#include "accel/stream_mirror_accelerators.h"
+#include "accel/registry.h"
+#include "tests/registry_helpers.h"
 #include "render/camera.h"
 #include "render/cpu_renderer.h"
 #include "render/gpu_renderer.h"
@@ -40,11 +41,7 @@ namespace {
 using test::RunResult;
 
 // Every structure of every ray tracer, as the command line names them.
-const std::vector<std::pair<int, std::string>> kEveryStructure = {
-    {2, "kk-bvh"},           {2, "gs-bvh"},           {2, "kd-restart"}, {2, "kd-backtrack"}, {2, "grid"},
-    {2, "grid --grid-kernels split"}, {1, "kk-bvh"},  {1, "gs-bvh"},     {1, "kd-tree"},      {1, "kd-pbrt"},
-    {1, "grid"},             {1, "kk-bvh-recursive"}, {1, "gs-bvh-recursive"}, {1, "octree"}, {1, "kd-restart"},
-    {1, "kd-backtrack"},     {1, "grid-stream"},      {3, "0"}};
+const std::vector<std::pair<int, std::string>> kEveryStructure = testing_registry::everyStructureRun();
 
 // An OBJ of separate triangles, every coordinate written exactly (%.17g of a
 // float is its exact value, so the file reads back bit for bit).
@@ -327,25 +324,25 @@ TEST_F(EmptyStructures, EveryStructureBuildsAndMissesWithoutTriangles) {
   for (int i = 0; i < 16; ++i) rays.push_back(Ray{{0, 0, 3}, glm::normalize(glm::vec3(0.1f * float(i - 8), 0.05f, -1))});
   AccelBuildConfig build;
   build.gsTries = 1;
-  for (int number = 0; number < 8; ++number) {
-    SCOPED_TRACE("CPU " + std::to_string(number));
-    const auto accel = makeCpuAccelerator(number, scene.triangles, build);
-    for (const Ray& ray : rays) EXPECT_FALSE(accel->intersect(ray, false, nullptr).found());
-  }
-  for (const char* name : {"kd-restart", "kd-backtrack", "grid-stream"}) {
-    SCOPED_TRACE(name);
-    const auto accel = makeStreamMirrorAccelerator(*streamMirrorByName(name), scene.triangles, build);
-    for (const Ray& ray : rays) EXPECT_FALSE(accel->intersect(ray, false, nullptr).found());
-  }
-  const auto embree = makeEmbreeAccelerator(scene.triangles);
-  for (const Ray& ray : rays) EXPECT_FALSE(embree->intersect(ray, false, nullptr).found());
-  for (int number = 0; number < 5; ++number)
-    for (const GridKernels kernels : {GridKernels::Merged, GridKernels::Split}) {
-      if (number != 4 && kernels == GridKernels::Split) continue;
-      SCOPED_TRACE("GPU " + std::to_string(number));
-      const auto traversal = makeGpuTraversal(number, scene, GpuTraversalConfig{build, 20, kernels});
-      for (const Hit& hit : test::traceOnGpu(*traversal, rays).hits) EXPECT_FALSE(hit.found());
+  for (const Structure& s : structures()) {
+    SCOPED_TRACE(std::string(s.name));
+    if (s.cpu) {
+      const auto accel = makeCpuStructure(s, scene.triangles, build);
+      for (const Ray& ray : rays) EXPECT_FALSE(accel->intersect(ray, false, nullptr).found());
     }
+    if (s.mirror) {
+      const auto accel = makeMirrorStructure(s, scene.triangles, build);
+      for (const Ray& ray : rays) EXPECT_FALSE(accel->intersect(ray, false, nullptr).found());
+    }
+    if (s.stream)
+      for (const GridKernels kernels : {GridKernels::Merged, GridKernels::Split}) {
+        const auto reads = s.readsOn(RendererId::Gpu);
+        if (kernels == GridKernels::Split && std::find(reads.begin(), reads.end(), BuildParam::GridKernels) == reads.end())
+          continue;
+        const auto traversal = makeStreamStructure(s, scene.triangles, GpuTraversalConfig{build, 20, kernels});
+        for (const Hit& hit : test::traceOnGpu(*traversal, rays).hits) EXPECT_FALSE(hit.found());
+      }
+  }
 }
 
 }  // namespace
@@ -365,14 +362,11 @@ std::vector<HitRecord> primaryHits(const Scene& scene, int renderer, const std::
   AccelBuildConfig build;
   build.gsTries = 1;
   if (renderer == 2) {
-    const auto traversal = makeGpuTraversal(gpuAcceleratorNumber(accel), scene, GpuTraversalConfig{build, 20});
+    const auto traversal = makeStreamStructure(accel, scene.triangles, GpuTraversalConfig{build, 20});
     GpuRenderer gpu(scene, *traversal, size, size);
     return gpu.render(scene.camera, 1, true).primaryHits;
   }
-  const auto mirror = streamMirrorByName(accel);
-  const auto cpuAccel = renderer == 3 ? makeEmbreeAccelerator(scene.triangles)
-                        : mirror      ? makeStreamMirrorAccelerator(*mirror, scene.triangles, build)
-                                      : makeCpuAccelerator(acceleratorNumber(accel), scene.triangles, build);
+  const auto cpuAccel = makeCpuStructure(resolveStructure(accel, RendererId(renderer)), scene.triangles, build);
   CpuRenderer cpu(scene, *cpuAccel, 0);
   return cpu.render(scene.camera, size, size, 1, true).primaryHits;
 }

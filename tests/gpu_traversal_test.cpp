@@ -4,49 +4,44 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "accel/brute_force.h"
-#include "accel/stream_mirror_accelerators.h"
+#include "accel/registry.h"
 #include "accel/gpu_traversal.h"
+#include "scenes/scene.h"
 #include "tests/gl_test_support.h"
 #include "tests/test_meshes.h"
 
 namespace passtrace {
 namespace {
 
+// Every stream structure of the registry, with each --grid-kernels variant
+// it reads, under both triangle tests.
 struct GpuCase {
-  int accelerator;  // GPU column of thesis Table 4
+  const Structure* structure;
   GridKernels gridKernels;
   std::string name;
   TriangleTest triangleTest = TriangleTest::MollerTrumbore;
 };
 
 const std::vector<GpuCase>& gpuCases() {
-  static const std::vector<GpuCase> cases = {{0, GridKernels::Merged, "kk_bvh"},
-                                             {1, GridKernels::Merged, "gs_bvh"},
-                                             {2, GridKernels::Merged, "kd_restart"},
-                                             {3, GridKernels::Merged, "kd_backtrack"},
-                                             {4, GridKernels::Merged, "grid"},
-                                             {4, GridKernels::Split, "grid_split"},
-                                             // --triangle-test watertight, in the kernels and on the CPU
-                                             {0, GridKernels::Merged, "kk_bvh_watertight", TriangleTest::Watertight},
-                                             {1, GridKernels::Merged, "gs_bvh_watertight", TriangleTest::Watertight},
-                                             {2, GridKernels::Merged, "kd_restart_watertight", TriangleTest::Watertight},
-                                             {3, GridKernels::Merged, "kd_backtrack_watertight", TriangleTest::Watertight},
-                                             {4, GridKernels::Merged, "grid_watertight", TriangleTest::Watertight},
-                                             {4, GridKernels::Split, "grid_split_watertight", TriangleTest::Watertight}};
+  static const std::vector<GpuCase> cases = [] {
+    std::vector<GpuCase> cases;
+    for (const TriangleTest test : {TriangleTest::MollerTrumbore, TriangleTest::Watertight})
+      for (const Structure& s : structures()) {
+        if (!s.runsOn(RendererId::Gpu)) continue;
+        std::string name(s.name);
+        std::replace(name.begin(), name.end(), '-', '_');
+        const std::string suffix = test == TriangleTest::Watertight ? "_watertight" : "";
+        cases.push_back({&s, GridKernels::Merged, name + suffix, test});
+        const auto reads = s.readsOn(RendererId::Gpu);
+        if (std::find(reads.begin(), reads.end(), BuildParam::GridKernels) != reads.end())
+          cases.push_back({&s, GridKernels::Split, name + "_split" + suffix, test});
+      }
+    return cases;
+  }();
   return cases;
-}
-
-// The CPU accelerator that runs the same algorithm over the same data.
-std::unique_ptr<CpuAccelerator> cpuTwin(int gpuAccelerator, std::span<const Triangle> tris,
-                                        const AccelBuildConfig& config) {
-  switch (gpuAccelerator) {
-    case 0: return makeCpuAccelerator(0, tris, config);
-    case 1: return makeCpuAccelerator(1, tris, config);
-    case 2: return makeStreamMirrorAccelerator(StreamMirror::KdRestart, tris, config);
-    case 3: return makeStreamMirrorAccelerator(StreamMirror::KdBacktrack, tris, config);
-    default: return makeStreamMirrorAccelerator(StreamMirror::Grid, tris, config);
-  }
 }
 
 class GpuTraversalAgreement : public test::GlTest,
@@ -61,7 +56,8 @@ TEST_P(GpuTraversalAgreement, SameHitsAsBruteForceAndSameStepsAsTheCpu) {
   scene.materials = {Material{}};
   AccelBuildConfig build;
   build.triangleTest = c.triangleTest;
-  const auto cpu = cpuTwin(c.accelerator, scene.triangles, build);
+  // The CPU running the same algorithm over the same data.
+  const auto cpu = makeMirrorStructure(*c.structure, scene.triangles, build);
 
   std::vector<Ray> rays = testmesh::rayMix(testmesh::boundsOf(mesh.tris), 500, 42);
   std::vector<bool> shadow(rays.size(), false);
@@ -74,7 +70,7 @@ TEST_P(GpuTraversalAgreement, SameHitsAsBruteForceAndSameStepsAsTheCpu) {
   }
   std::vector<test::TracedRays> gpu;
   for (int loopLimit : {3, 64}) {
-    const auto traversal = makeGpuTraversal(c.accelerator, scene, GpuTraversalConfig{build, loopLimit, c.gridKernels});
+    const auto traversal = makeStreamStructure(*c.structure, scene.triangles, GpuTraversalConfig{build, loopLimit, c.gridKernels});
     gpu.push_back(test::traceOnGpu(*traversal, rays, shadow));
   }
   size_t found = 0;

@@ -20,7 +20,8 @@
 #include "accel/cpu_accelerator.h"
 #include "accel/bvh/escape_sequence.h"
 #include "accel/bvh/goldsmith_salmon_builder.h"
-#include "accel/grid_accelerators.h"
+#include "accel/registry.h"
+#include "tests/registry_helpers.h"
 #include "accel/grid/grid_texels.h"
 #include "accel/grid/grid_traversal.h"
 #include "accel/octree/octree.h"
@@ -191,7 +192,7 @@ TEST_P(GridOctreeGsMeshTest, AgreesWithBruteForce) {
   const std::vector<Ray> edge = boundaryRays(grid, 2000, 9);
   rays.insert(rays.end(), edge.begin(), edge.end());
   for (const int number : kFamily) {
-    const auto accel = makeGridFamilyCpuAccelerator(number, tris);
+    const auto accel = testing_registry::cpuStructure(number, tris);
     const Agreement a = compareWithBruteForce(*accel, tris, rays);
     const std::string what = GetParam().name + " / " + accel->name();
     EXPECT_EQ(a.foundMismatch, 0u) << what;
@@ -206,8 +207,8 @@ TEST_P(GridOctreeGsMeshTest, AgreesWithBruteForce) {
 
 TEST_P(GridOctreeGsMeshTest, GoldsmithSalmonSequentialAndRecursiveAgreeExactly) {
   const auto& tris = GetParam().tris;
-  const auto sequential = makeGridFamilyCpuAccelerator(1, tris);
-  const auto recursive = makeGridFamilyCpuAccelerator(6, tris);
+  const auto sequential = testing_registry::cpuStructure(1, tris);
+  const auto recursive = testing_registry::cpuStructure(6, tris);
   const std::vector<Ray> rays = testmesh::rayMix(testmesh::boundsOf(tris), 500, 3);
   size_t differ = 0, stepDiffer = 0;
   for (const Ray& ray : rays)
@@ -527,7 +528,7 @@ TEST(UniformGrid, FlattenLayoutIsWhatTheKernelReads) {
   EXPECT_EQ(texels.lists.size(), (texels.listEntries + 3) / 4);
   EXPECT_DOUBLE_EQ(texels.floatsPerTriangle, double(grid.cellCount() + texels.listEntries) / double(tris.size()));
   // The accelerator reports the same numbers without flattening.
-  const AccelStats s = makeGridFamilyCpuAccelerator(4, tris)->stats();
+  const AccelStats s = testing_registry::cpuStructure(4, tris)->stats();
   EXPECT_EQ(s.name, "grid");
   EXPECT_EQ(s.nodes, grid.cellCount());
   EXPECT_EQ(s.leaves, nonEmpty);
@@ -569,7 +570,7 @@ TEST(Octree, FloatsPerTriangleAndLimits) {
   EXPECT_LE(tree.depth, 4u);
   EXPECT_DOUBLE_EQ(tree.floatsPerTriangle(tris.size()),
                    (8.0 * double(tree.nodes.size()) + double(tree.references.size())) / 4000.0);
-  const AccelStats s = makeGridFamilyCpuAccelerator(7, tris)->stats();
+  const AccelStats s = testing_registry::cpuStructure(7, tris)->stats();
   const Octree byDefault = buildOctree(tris);
   EXPECT_EQ(s.name, "octree");
   EXPECT_EQ(s.nodes, byDefault.nodes.size());
@@ -590,17 +591,15 @@ TEST(GridFamily, FactoryAndEmptyScenes) {
   const std::vector<Triangle> none;
   const std::vector<Triangle> single = testmesh::singleTriangle();
   for (const int number : kFamily) {
-    const auto accel = makeGridFamilyCpuAccelerator(number, none);
+    const auto accel = testing_registry::cpuStructure(number, none);
     RayStats stats;
     EXPECT_FALSE(accel->intersect(Ray{}, false, &stats).found());
     EXPECT_EQ(stats.steps, 0u);
-    EXPECT_EQ(accel->name(), acceleratorName(number));
-    const auto viaMain = makeCpuAccelerator(number, single);
-    EXPECT_EQ(viaMain->name(), acceleratorName(number));
+    EXPECT_EQ(accel->name(), testing_registry::cpuName(number));
+    const auto viaMain = testing_registry::cpuStructure(number, single);
+    EXPECT_EQ(viaMain->name(), testing_registry::cpuName(number));
     EXPECT_TRUE(viaMain->intersect(Ray{glm::vec3(-0.5f, -0.5f, 2.0f), glm::vec3(0, 0, -1)}, false, nullptr).found());
   }
-  EXPECT_THROW(makeGridFamilyCpuAccelerator(0, none), std::invalid_argument);
-  EXPECT_THROW(makeGridFamilyCpuAccelerator(5, none), std::invalid_argument);
 }
 
 TEST(GridFamily, LargeSoupBuildsInReasonableTime) {
@@ -608,7 +607,7 @@ TEST(GridFamily, LargeSoupBuildsInReasonableTime) {
   const std::vector<Ray> rays = testmesh::rayMix(testmesh::boundsOf(tris), 500, 1);
   for (const int number : kFamily) {
     const auto start = std::chrono::steady_clock::now();
-    const auto accel = makeGridFamilyCpuAccelerator(number, tris);
+    const auto accel = testing_registry::cpuStructure(number, tris);
     const double ms = msSince(start);
     const AccelStats s = accel->stats();
     RayStats rs;

@@ -17,7 +17,9 @@
 
 #include "accel/brute_force.h"
 #include "accel/cpu_accelerator.h"
-#include "accel/kd/kd_accelerator.h"
+#include "accel/kd/kd_structures.h"
+#include "accel/registry.h"
+#include "tests/registry_helpers.h"
 #include "accel/kd/kd_texels.h"
 #include "accel/kd/kd_traversal.h"
 #include "accel/kd/kd_tree.h"
@@ -348,7 +350,7 @@ TEST_P(KdMeshTest, AcceleratorsAgreeWithBruteForce) {
   const Aabb bounds = testmesh::boundsOf(tris);
   const std::vector<Ray> mix = testmesh::rayMix(bounds, 1000, 91);
   for (const int number : {2, 3}) {
-    const auto accel = makeCpuAccelerator(number, tris);
+    const auto accel = testing_registry::cpuStructure(number, tris);
     const KdTree tree = number == 2 ? buildKdTree(tris) : buildKdTreePbrt(tris);
     const std::vector<Ray> planes = splitPlaneRays(tree, bounds, 3000, 17 + number);
     const Agreement a = compare(*accel, tris, mix);
@@ -372,7 +374,7 @@ TEST_P(KdMeshTest, AcceleratorsAgreeWithBruteForce) {
 TEST_P(KdMeshTest, TraversalMatchesTheAcceleratorAndCountsWork) {
   const auto& tris = GetParam().tris;
   const KdTree tree = buildKdTree(tris, kdConfigFor(AccelBuildConfig{}));
-  const auto accel = makeCpuAccelerator(2, tris);
+  const auto accel = testing_registry::cpuStructure(2, tris);
   for (const Ray& ray : testmesh::rayMix(testmesh::boundsOf(tris), 40, 5)) {
     RayStats direct, viaAccel;
     const Hit h1 = traverseKdTree(tree, tris, ray, false, &direct);
@@ -496,15 +498,14 @@ TEST(KdTree, AcceleratorTwoTakesMinElementsAndMaxDepthFromTheBuildConfig) {
   const auto tris = testmesh::triangleSoup(2000, Aabb{glm::vec3(-1), glm::vec3(1)}, 0.1f, 9);
   AccelBuildConfig config;
   config.kdMaxDepth = 4;
-  EXPECT_EQ(makeCpuAccelerator(2, tris, config)->stats().depth, 5u);
-  EXPECT_EQ(makeCpuAccelerator(3, tris, config)->stats().depth, 5u);
+  EXPECT_EQ(testing_registry::cpuStructure(2, tris, config)->stats().depth, 5u);
+  EXPECT_EQ(testing_registry::cpuStructure(3, tris, config)->stats().depth, 5u);
   config.kdMaxDepth = 0;
   config.kdMinElements = 3000;
-  EXPECT_EQ(makeCpuAccelerator(2, tris, config)->stats().nodes, 1u);
-  EXPECT_GT(makeCpuAccelerator(3, tris, config)->stats().nodes, 1u) << "pbrt keeps its own maxPrims";
+  EXPECT_EQ(testing_registry::cpuStructure(2, tris, config)->stats().nodes, 1u);
+  EXPECT_GT(testing_registry::cpuStructure(3, tris, config)->stats().nodes, 1u) << "pbrt keeps its own maxPrims";
   EXPECT_EQ(kdPbrtConfigFor(AccelBuildConfig{}).intersectionCost, 80.0f);
   EXPECT_EQ(kdPbrtConfigFor(AccelBuildConfig{}).minElements, 1);
-  EXPECT_THROW(makeKdCpuAccelerator(4, tris, {}), std::invalid_argument);
 }
 
 TEST(KdTree, EmptySceneGivesEmptyTreeTexelsAndNoHits) {
@@ -521,7 +522,7 @@ TEST(KdTree, EmptySceneGivesEmptyTreeTexelsAndNoHits) {
     EXPECT_FALSE(traverseKdTree(tree, none, Ray{}, false, &stats).found());
     EXPECT_EQ(stats.steps, 0u);
   }
-  const auto accel = makeCpuAccelerator(2, none);
+  const auto accel = testing_registry::cpuStructure(2, none);
   EXPECT_EQ(accel->stats().nodes, 0u);
   EXPECT_EQ(accel->stats().floatsPerTriangle, 0.0);
 }
@@ -702,7 +703,7 @@ TEST(KdTree, LargeMeshesBuildAndTimesArePrinted) {
   for (const Case& c : cases) {
     for (const int number : {2, 3}) {
       const auto start = std::chrono::steady_clock::now();
-      const auto accel = makeCpuAccelerator(number, c.tris);
+      const auto accel = testing_registry::cpuStructure(number, c.tris);
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
       const AccelStats s = accel->stats();
       std::cout << "[ build    ] " << c.name << " (" << c.tris.size() << ") " << s.name << ": " << ms << " ms, "

@@ -6,6 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include "accel/registry.h"
+
 #include "accel/brute_force.h"
 #include "accel/gpu_traversal.h"
 #include "scenes/scene_registry.h"
@@ -86,7 +89,15 @@ TEST_F(GlTest, KernelCompiledForFewerPagesRefusesPagedData) {
 // brute-force hits. The page size starts where the triangles alone take four
 // pages and doubles until no stream needs more than kMaxStreamPages, so the
 // largest stream of each structure is paged.
-class PagedTraversal : public GlTest, public ::testing::WithParamInterface<int> {};
+// Parametrised by the registry's stream structures.
+std::vector<std::string> streamStructureNames() {
+  std::vector<std::string> names;
+  for (const Structure& s : structures())
+    if (s.runsOn(RendererId::Gpu)) names.emplace_back(s.name);
+  return names;
+}
+
+class PagedTraversal : public GlTest, public ::testing::WithParamInterface<std::string> {};
 
 TEST_P(PagedTraversal, SameHitsAsBruteForce) {
   const std::vector<Triangle> tris = testmesh::uvSphere(24, 32);
@@ -99,7 +110,7 @@ TEST_P(PagedTraversal, SameHitsAsBruteForce) {
   for (uint64_t page = std::bit_ceil(3 * tris.size() / 4); !traversal; page *= 2) {
     ASSERT_LT(page, 1u << 24) << "no page size worked";
     try {
-      traversal = makeGpuTraversal(GetParam(), scene, GpuTraversalConfig{{}, 16, GridKernels::Merged, page});
+      traversal = makeStreamStructure(GetParam(), scene.triangles, GpuTraversalConfig{{}, 16, GridKernels::Merged, page});
     } catch (const GlError& e) {
       ASSERT_NE(std::string(e.what()).find("a kernel reads at most"), std::string::npos) << e.what();
     }
@@ -116,8 +127,12 @@ TEST_P(PagedTraversal, SameHitsAsBruteForce) {
   EXPECT_GT(found, rays.size() / 10);
 }
 
-INSTANTIATE_TEST_SUITE_P(AllStructures, PagedTraversal, ::testing::Range(0, 5),
-                         [](const auto& info) { return "a" + std::to_string(info.param); });
+INSTANTIATE_TEST_SUITE_P(AllStructures, PagedTraversal, ::testing::ValuesIn(streamStructureNames()),
+                         [](const auto& info) {
+                           std::string name = info.param;
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
 
 // Whole frames (three bounces on the Cornell box, whose mirror and shadows
 // read the shading data at every bounce) give the same bits with 64-texel

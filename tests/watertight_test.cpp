@@ -31,7 +31,8 @@
 #include "accel/brute_force.h"
 #include "accel/cpu_accelerator.h"
 #include "accel/embree/embree_accelerator.h"
-#include "accel/stream_mirror_accelerators.h"
+#include "accel/registry.h"
+#include "scenes/scene.h"
 #include "accel/gpu_traversal.h"
 #include "render/parallel_for.h"
 #include "tests/gl_test_support.h"
@@ -105,7 +106,7 @@ AccelBuildConfig buildConfig(TriangleTest test) {
 
 const std::vector<Hit>& referenceHits(TriangleTest test) {
   TestData& d = data();
-  if (!d.reference.count(test)) d.reference[test] = traceCpu(*makeCpuAccelerator(0, d.sphere.tris, buildConfig(test)));
+  if (!d.reference.count(test)) d.reference[test] = traceCpu(*makeCpuStructure("kk-bvh", d.sphere.tris, buildConfig(test)));
   return d.reference[test];
 }
 
@@ -144,10 +145,10 @@ void checkHits(const std::string& renderer, const std::string& accelerator, std:
       continue;
     }
     const float r = glm::length(rays[i].origin + h.t * rays[i].direction);
-    if (test && !(r >= lo && r <= hi) && offSphere++ < 5)
+    if (!(r >= lo && r <= hi) && offSphere++ < 5)
       ADD_FAILURE() << accelerator << ": ray " << i << " hits at distance " << r << " from the centre";
     const Hit& ref = reference[i];
-    if (test && !gpuMollerTrumbore && ref.found() && std::abs(ref.t - h.t) > tolerance * std::max(1.0f, h.t) &&
+    if (!gpuMollerTrumbore && ref.found() && std::abs(ref.t - h.t) > tolerance * std::max(1.0f, h.t) &&
         disagreements++ < 5)
       ADD_FAILURE() << accelerator << ": ray " << i << " t " << h.t << ", the CPU K/K BVH's " << ref.t;
   }
@@ -181,9 +182,17 @@ void checkHits(const std::string& renderer, const std::string& accelerator, std:
               renderer.c_str(), accelerator.c_str(), test ? triangleTestName(*test).c_str() : "embree's own", rays.size(), total, leaks[0],
               leaks[1], leaks[2], double(total) / double(rays.size()));
   std::fflush(stdout);
-  if (!test) return;  // Embree: reported only
   EXPECT_EQ(offSphere, 0u) << accelerator;
   EXPECT_EQ(disagreements, 0u) << accelerator;
+  if (!test) {
+    // Embree's own test leaks about 7.5 % of edge-aimed and 21 % of
+    // vertex-aimed rays here and almost no uniform ones: a traversal hole
+    // would show far above that.
+    const double bounds[] = {kMollerTrumboreBound.uniform, 0.5, 0.5};
+    for (int k = 0; k < testmesh::kInsideRayKinds; ++k)
+      EXPECT_LE(double(leaks[k]), bounds[k] * double(perKind[k])) << "embree: " << kKindNames[k] << "-aimed rays leak too often";
+    return;
+  }
   EXPECT_EQ(traversalLeaks, 0u) << accelerator << " (" << renderer << ") leaks where its triangle test does not";
   if (*test == TriangleTest::Watertight) {
     EXPECT_EQ(total, 0u) << accelerator << " (" << renderer << ") leaks with the watertight test";
@@ -213,12 +222,9 @@ TEST_P(WatertightCpu, AllStructures) {
   const TriangleTest test = GetParam();
   const std::span<const Triangle> tris = data().sphere.tris;
   const AccelBuildConfig config = buildConfig(test);
-  for (int number = 0; number < 8; ++number) {
-    const auto accelerator = makeCpuAccelerator(number, tris, config);
-    checkHits("cpu", accelerator->name(), test, traceCpu(*accelerator));
-  }
-  for (StreamMirror mirror : {StreamMirror::KdRestart, StreamMirror::KdBacktrack, StreamMirror::Grid}) {
-    const auto accelerator = makeStreamMirrorAccelerator(mirror, tris, config);
+  for (const Structure& s : structures()) {
+    if (!s.runsOn(RendererId::Cpu)) continue;
+    const auto accelerator = makeCpuStructure(s, tris, config);
     checkHits("cpu", accelerator->name(), test, traceCpu(*accelerator));
   }
 }
@@ -231,20 +237,20 @@ TEST_P(WatertightGpu, AllStructures) {
   scene.triangles = data().sphere.tris;
   scene.materialIds.assign(scene.triangles.size(), 0);
   scene.materials = {Material{}};
-  struct Case {
-    int number;
-    GridKernels kernels;
-    const char* name;
-  };
-  for (const Case& c : {Case{0, GridKernels::Merged, "kk-bvh"}, Case{1, GridKernels::Merged, "gs-bvh"},
-                        Case{2, GridKernels::Merged, "kd-restart"}, Case{3, GridKernels::Merged, "kd-backtrack"},
-                        Case{4, GridKernels::Merged, "grid"}, Case{4, GridKernels::Split, "grid-split"}}) {
-    GpuTraversalConfig config;
-    config.build = buildConfig(test);
-    config.loopLimit = 64;
-    config.gridKernels = c.kernels;
-    const auto traversal = makeGpuTraversal(c.number, scene, config);
-    checkHits("gpu", c.name, test, traceGpu(*traversal));
+  for (const Structure& s : structures()) {
+    if (!s.runsOn(RendererId::Gpu)) continue;
+    const auto reads = s.readsOn(RendererId::Gpu);
+    for (const GridKernels kernels : {GridKernels::Merged, GridKernels::Split}) {
+      if (kernels == GridKernels::Split && std::find(reads.begin(), reads.end(), BuildParam::GridKernels) == reads.end())
+        continue;
+      GpuTraversalConfig config;
+      config.build = buildConfig(test);
+      config.loopLimit = 64;
+      config.gridKernels = kernels;
+      const auto traversal = makeStreamStructure(s, scene.triangles, config);
+      checkHits("gpu", std::string(s.name) + (kernels == GridKernels::Split ? "-split" : ""), test,
+                traceGpu(*traversal));
+    }
   }
 }
 
@@ -255,8 +261,9 @@ INSTANTIATE_TEST_SUITE_P(BothTests, WatertightGpu,
                          ::testing::Values(TriangleTest::MollerTrumbore, TriangleTest::Watertight),
                          [](const auto& info) { return info.param == TriangleTest::Watertight ? "watertight" : "moller_trumbore"; });
 
-// Embree has its own triangle test (the option does not reach it): its leaks
-// are reported, not asserted.
+// Embree has its own triangle test (the option does not reach it): its hits
+// must lie on the sphere and agree with the CPU K/K BVH's, and its leaks stay
+// within its own test's bounds.
 TEST(WatertightEmbree, Baseline) {
   const auto accelerator = makeEmbreeAccelerator(data().sphere.tris);
   checkHits("cpu", "embree", std::nullopt, traceCpu(*accelerator));

@@ -352,7 +352,7 @@ double goldsmithSalmonCost(const Bvh& bvh) {
 SequenceBuild buildGoldsmithSalmonSequence(std::span<const Triangle> tris, const GoldsmithSalmonConfig& config) {
   const auto start = std::chrono::steady_clock::now();
   const Bvh bvh = buildGoldsmithSalmon(tris, config);
-  SequenceBuild build{flattenEscapeSequence(bvh, tris), bvhStats(1, bvh)};
+  SequenceBuild build{flattenEscapeSequence(bvh, tris), bvhStats("gs-bvh", bvh)};
   build.stats.floatsPerTriangle = build.sequence.floatsPerTriangle();
   build.stats.buildMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -33,7 +33,7 @@
 #include <span>
 
 #include "accel/bvh/bvh.h"
-#include "accel/cpu_accelerator.h"
+#include "accel/bvh/bvh_structures.h"
 #include "accel/geometry/geometry.h"
 
 namespace passtrace {

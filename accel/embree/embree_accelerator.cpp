@@ -205,4 +205,8 @@ std::unique_ptr<CpuAccelerator> makeEmbreeAccelerator(std::span<const Triangle> 
   return std::make_unique<EmbreeAccelerator>(tris);
 }
 
+std::unique_ptr<CpuAccelerator> makeEmbreeCpu(std::span<const Triangle> tris, const AccelBuildConfig&) {
+  return makeEmbreeAccelerator(tris);
+}
+
 }  // namespace passtrace

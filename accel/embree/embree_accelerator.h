@@ -48,5 +48,7 @@ namespace passtrace {
 // Builds an Embree scene over tris (may be empty: nothing is ever hit).
 // Safe to intersect from many threads at once once built.
 std::unique_ptr<CpuAccelerator> makeEmbreeAccelerator(std::span<const Triangle> tris);
+// The registry's factory (-r 3): Embree reads no build parameter.
+std::unique_ptr<CpuAccelerator> makeEmbreeCpu(std::span<const Triangle> tris, const AccelBuildConfig& config);
 
 }  // namespace passtrace

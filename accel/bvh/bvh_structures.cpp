@@ -1,0 +1,129 @@
+#include "accel/bvh/bvh_structures.h"
+
+#include <chrono>
+
+#include "accel/bvh/bvh_traversal.h"
+#include "accel/bvh/goldsmith_salmon_builder.h"
+#include "accel/bvh/gpu_bvh_traversal.h"
+
+namespace passtrace {
+namespace {
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+GoldsmithSalmonConfig gsConfig(const AccelBuildConfig& config) { return {config.gsTries, config.gsSeed}; }
+
+// A BVH's escape-index sequence, traversed as the GPU does. Keeps only the
+// sequence, which carries its own copy of the vertices.
+class SequenceAccelerator final : public CpuAccelerator {
+public:
+  SequenceAccelerator(SequenceBuild build, TriangleTest test)
+      : sequence_(std::move(build.sequence)), stats_(std::move(build.stats)), test_(test) {}
+  Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
+    return traverseEscapeSequence(sequence_, ray, anyHit, stats, test_);
+  }
+  std::string name() const override { return stats_.name; }
+  AccelStats stats() const override { return stats_; }
+
+private:
+  EscapeSequence sequence_;
+  AccelStats stats_;
+  TriangleTest test_;
+};
+
+// The same kind of tree descended recursively; holds the caller's triangles.
+class RecursiveBvhAccelerator final : public CpuAccelerator {
+public:
+  RecursiveBvhAccelerator(std::span<const Triangle> tris, Bvh bvh, AccelStats stats, TriangleTest test)
+      : tris_(tris), bvh_(std::move(bvh)), stats_(std::move(stats)), test_(test) {}
+  Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
+    return traverseBvhRecursive(bvh_, tris_, ray, anyHit, stats, test_);
+  }
+  std::string name() const override { return stats_.name; }
+  AccelStats stats() const override { return stats_; }
+
+private:
+  std::span<const Triangle> tris_;
+  Bvh bvh_;
+  AccelStats stats_;
+  TriangleTest test_;
+};
+
+SequenceBuild buildGsSequence(std::span<const Triangle> tris, const AccelBuildConfig& config) {
+  SequenceBuild build = buildGoldsmithSalmonSequence(tris, gsConfig(config));
+  build.stats.name = "gs-bvh";
+  return build;
+}
+
+std::unique_ptr<CpuAccelerator> recursive(const std::string& name, std::span<const Triangle> tris, Bvh (*buildTree)(std::span<const Triangle>, const AccelBuildConfig&),
+                                          const AccelBuildConfig& config) {
+  const auto start = std::chrono::steady_clock::now();
+  Bvh bvh = buildTree(tris, config);
+  AccelStats stats = bvhStats(name, bvh);
+  stats.buildMs = millisecondsSince(start);
+  return makeRecursiveBvhAccelerator(tris, std::move(bvh), std::move(stats), config.triangleTest);
+}
+
+Bvh kkTree(std::span<const Triangle> tris, const AccelBuildConfig& config) { return buildKayKajiya(tris, config.kayKajiya); }
+Bvh gsTree(std::span<const Triangle> tris, const AccelBuildConfig& config) { return buildGoldsmithSalmon(tris, gsConfig(config)); }
+
+}  // namespace
+
+AccelStats bvhStats(const std::string& name, const Bvh& bvh) {
+  AccelStats s;
+  s.name = name;
+  s.nodes = bvh.nodes.size();
+  s.leaves = bvh.leafCount();
+  s.references = s.leaves;
+  s.depth = bvh.depth();
+  s.floatsPerTriangle = s.leaves == 0 ? 0.0 : 8.0 * static_cast<double>(s.nodes - s.leaves) / static_cast<double>(s.leaves);
+  return s;
+}
+
+SequenceBuild buildKayKajiyaSequence(std::span<const Triangle> tris, const KayKajiyaConfig& config) {
+  const auto start = std::chrono::steady_clock::now();
+  const Bvh bvh = buildKayKajiya(tris, config);
+  SequenceBuild build{flattenEscapeSequence(bvh, tris), bvhStats("kk-bvh", bvh)};
+  build.stats.buildMs = millisecondsSince(start);
+  build.stats.floatsPerTriangle = build.sequence.floatsPerTriangle();
+  return build;
+}
+
+std::unique_ptr<CpuAccelerator> makeSequenceAccelerator(SequenceBuild build, TriangleTest test) {
+  return std::make_unique<SequenceAccelerator>(std::move(build), test);
+}
+
+std::unique_ptr<CpuAccelerator> makeRecursiveBvhAccelerator(std::span<const Triangle> tris, Bvh bvh, AccelStats stats,
+                                                            TriangleTest test) {
+  return std::make_unique<RecursiveBvhAccelerator>(tris, std::move(bvh), std::move(stats), test);
+}
+
+std::unique_ptr<CpuAccelerator> makeKkBvhCpu(std::span<const Triangle> tris, const AccelBuildConfig& config) {
+  return makeSequenceAccelerator(buildKayKajiyaSequence(tris, config.kayKajiya), config.triangleTest);
+}
+
+std::unique_ptr<CpuAccelerator> makeGsBvhCpu(std::span<const Triangle> tris, const AccelBuildConfig& config) {
+  return makeSequenceAccelerator(buildGsSequence(tris, config), config.triangleTest);
+}
+
+std::unique_ptr<CpuAccelerator> makeKkBvhRecursiveCpu(std::span<const Triangle> tris, const AccelBuildConfig& config) {
+  return recursive("kk-bvh-recursive", tris, kkTree, config);
+}
+
+std::unique_ptr<CpuAccelerator> makeGsBvhRecursiveCpu(std::span<const Triangle> tris, const AccelBuildConfig& config) {
+  return recursive("gs-bvh-recursive", tris, gsTree, config);
+}
+
+std::unique_ptr<GpuTraversal> makeKkBvhStream(std::span<const Triangle> tris, const GpuTraversalConfig& config) {
+  SequenceBuild build = buildKayKajiyaSequence(tris, config.build.kayKajiya);
+  return std::make_unique<GpuBvhTraversal>(build.sequence, std::move(build.stats), config);
+}
+
+std::unique_ptr<GpuTraversal> makeGsBvhStream(std::span<const Triangle> tris, const GpuTraversalConfig& config) {
+  SequenceBuild build = buildGsSequence(tris, config.build);
+  return std::make_unique<GpuBvhTraversal>(build.sequence, std::move(build.stats), config);
+}
+
+}  // namespace passtrace

@@ -1,0 +1,219 @@
+#include "accel/registry.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "accel/bvh/bvh_structures.h"
+#include "accel/grid/grid_structures.h"
+#include "accel/kd/kd_structures.h"
+#include "accel/octree/octree_structure.h"
+#if PASSTRACE_HAVE_EMBREE
+#include "accel/embree/embree_accelerator.h"
+#endif
+
+namespace passtrace {
+namespace {
+
+using enum RendererId;
+using P = BuildParam;
+
+// One row per structure. Memory: peak bytes per triangle measured as
+// registry.h's MemoryModel says (CPU column for kd-restart, kd-backtrack and
+// grid-stream: their kernels' CPU mirrors).
+std::vector<Structure> makeRows() {
+  std::vector<Structure> rows = {
+      {.name = "kk-bvh", .family = "bvh",
+       .description = "Kay/Kajiya BVH (SAH-ordered splits), walked as its escape-index sequence",
+       .renderers = {Cpu, Gpu}, .number = 0, .numberedOn = {Cpu, Gpu},
+       .cpu = makeKkBvhCpu, .stream = makeKkBvhStream, .mirror = makeKkBvhCpu,
+       .memory = {230, 255}, .reads = {P::SwapChildren}},
+      {.name = "gs-bvh", .family = "bvh",
+       .description = "Goldsmith/Salmon BVH (insertion build), walked as its escape-index sequence",
+       .renderers = {Cpu, Gpu}, .number = 1, .numberedOn = {Cpu, Gpu},
+       .cpu = makeGsBvhCpu, .stream = makeGsBvhStream, .mirror = makeGsBvhCpu,
+       .memory = {232, 233}, .reads = {P::GsTries}},
+      {.name = "kd-tree", .family = "kd",
+       .description = "kd-tree, SAH with split clipping, stack traversal",
+       .renderers = {Cpu}, .number = 2, .numberedOn = {Cpu},
+       .cpu = makeKdTreeCpu,
+       .memory = {282, 0}, .reads = {P::KdMinElements, P::KdMaxDepth}},
+      {.name = "kd-pbrt", .family = "kd",
+       .description = "kd-tree built the pbrt way (pbrt's constants), stack traversal",
+       .renderers = {Cpu}, .number = 3, .numberedOn = {Cpu},
+       .cpu = makeKdPbrtCpu,
+       .memory = {947, 0}, .reads = {P::KdMaxDepth}},
+      {.name = "grid", .family = "grid",
+       .description = "uniform grid: 3D-DDA on the CPU, stream kernels on the GPU (--grid-kernels)",
+       .renderers = {Cpu, Gpu}, .number = 4, .numberedOn = {Cpu, Gpu},
+       .cpu = makeGridCpu, .stream = makeGridStream, .mirror = makeGridStreamMirror,
+       .memory = {1148, 1265}, .reads = {P::GridMultiplier, P::GridKernels}},
+      {.name = "kk-bvh-recursive", .family = "bvh",
+       .description = "Kay/Kajiya BVH descended recursively",
+       .renderers = {Cpu}, .number = 5, .numberedOn = {Cpu},
+       .cpu = makeKkBvhRecursiveCpu,
+       .memory = {164, 0}, .reads = {P::SwapChildren}},
+      {.name = "gs-bvh-recursive", .family = "bvh",
+       .description = "Goldsmith/Salmon BVH descended recursively",
+       .renderers = {Cpu}, .number = 6, .numberedOn = {Cpu},
+       .cpu = makeGsBvhRecursiveCpu,
+       .memory = {232, 0}, .reads = {P::GsTries}},
+      {.name = "octree", .family = "octree",
+       .description = "octree, front-to-back traversal",
+       .renderers = {Cpu}, .number = 7, .numberedOn = {Cpu},
+       .cpu = makeOctreeCpu,
+       .memory = {70, 0}, .reads = {}},
+      {.name = "kd-restart", .family = "kd",
+       .description = "kd-tree, stackless kd-restart (Foley & Sugerman); on the CPU the kernel's algorithm",
+       .renderers = {Cpu, Gpu}, .number = 2, .numberedOn = {Gpu},
+       .cpu = makeKdRestartMirror, .stream = makeKdRestartStream, .mirror = makeKdRestartMirror,
+       .memory = {394, 358}, .reads = {P::KdMinElements, P::KdMaxDepth}},
+      {.name = "kd-backtrack", .family = "kd",
+       .description = "kd-tree, stackless kd-backtrack (parent links); on the CPU the kernel's algorithm",
+       .renderers = {Cpu, Gpu}, .number = 3, .numberedOn = {Gpu},
+       .cpu = makeKdBacktrackMirror, .stream = makeKdBacktrackStream, .mirror = makeKdBacktrackMirror,
+       .memory = {498, 536}, .reads = {P::KdMinElements, P::KdMaxDepth}},
+      {.name = "grid-stream", .family = "grid",
+       .description = "the GPU uniform-grid kernel's algorithm over its texels, on the CPU",
+       .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
+       .cpu = makeGridStreamMirror,
+       .memory = {1243, 0}, .reads = {P::GridMultiplier}},
+  };
+#if PASSTRACE_HAVE_EMBREE
+  rows.push_back({.name = "embree", .family = "embree",
+                  .description = "Intel Embree 3 (rtcIntersect1/rtcOccluded1), the baseline, through the CPU renderer",
+                  .renderers = {Embree}, .number = std::nullopt, .numberedOn = {},
+                  .cpu = makeEmbreeCpu,
+                  .memory = {202, 0}, .reads = {}});
+#endif
+  return rows;
+}
+
+std::string numberText(int number) { return std::to_string(number); }
+
+}  // namespace
+
+std::string_view rendererName(RendererId renderer) {
+  switch (renderer) {
+    case OpenGl: return "opengl";
+    case Cpu: return "cpu";
+    case Gpu: return "gpu";
+    case Embree: return "embree";
+  }
+  return "?";
+}
+
+std::string_view rendererTitle(RendererId renderer) {
+  switch (renderer) {
+    case OpenGl: return "OpenGL preview";
+    case Cpu: return "CPU";
+    case Gpu: return "GPU stream";
+    case Embree: return "Embree";
+  }
+  return "?";
+}
+
+std::string_view buildParamFlag(BuildParam param) {
+  switch (param) {
+    case P::SwapChildren: return "-c/--swap-children";
+    case P::GsTries: return "-t/--gs-tries";
+    case P::GridMultiplier: return "-g/--grid-multiplier";
+    case P::KdMinElements: return "-e/--kd-min-elements";
+    case P::KdMaxDepth: return "-d/--kd-max-depth";
+    case P::GridKernels: return "--grid-kernels";
+    case P::LoopLimit: return "-l/--loop-limit";
+    case P::PageTexels: return "--page-texels";
+    case P::TriangleTest: return "--triangle-test";
+  }
+  return "?";
+}
+
+std::vector<BuildParam> Structure::readsOn(RendererId renderer) const {
+  std::vector<BuildParam> params;
+  if (!runsOn(renderer)) return params;
+  for (BuildParam p : reads)
+    if (p != P::GridKernels || renderer == Gpu) params.push_back(p);  // only the GPU grid has kernels to choose
+  if (renderer == Gpu) params.insert(params.end(), {P::LoopLimit, P::PageTexels});
+  if (renderer != Embree) params.push_back(P::TriangleTest);
+  return params;
+}
+
+const std::vector<Structure>& structures() {
+  static const std::vector<Structure> rows = makeRows();
+  return rows;
+}
+
+const Structure* findStructure(std::string_view name) {
+  for (const Structure& s : structures())
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
+const Structure& resolveStructure(std::string_view nameOrNumber, RendererId renderer) {
+  for (const Structure& s : structures()) {
+    if (!s.runsOn(renderer)) continue;
+    if (s.name == nameOrNumber) return s;
+    if (s.number && s.numberedOn.has(renderer) && numberText(*s.number) == nameOrNumber) return s;
+  }
+  // The valid choices, numbered ones in number order first.
+  std::vector<const Structure*> valid;
+  for (const Structure& s : structures())
+    if (s.runsOn(renderer)) valid.push_back(&s);
+  if (valid.empty())
+    throw std::invalid_argument("the " + std::string(rendererTitle(renderer)) + " renderer uses no structure");
+  const auto numberOn = [&](const Structure* s) {
+    return s->number && s->numberedOn.has(renderer) ? *s->number : 1 << 30;
+  };
+  std::stable_sort(valid.begin(), valid.end(),
+                   [&](const Structure* a, const Structure* b) { return numberOn(a) < numberOn(b); });
+  std::string list;
+  for (const Structure* s : valid) {
+    list += list.empty() ? "" : ", ";
+    if (numberOn(s) != 1 << 30) list += numberText(*s->number) + " ";
+    list += s->name;
+  }
+  const std::string title(rendererTitle(renderer));
+  if (findStructure(nameOrNumber))
+    throw std::invalid_argument("accelerator '" + std::string(nameOrNumber) + "' does not run on the " + title +
+                                " renderer (valid: " + list + ")");
+  throw std::invalid_argument("unknown accelerator '" + std::string(nameOrNumber) + "' (valid on the " + title +
+                              " renderer: " + list + ")");
+}
+
+std::unique_ptr<CpuAccelerator> makeCpuStructure(const Structure& s, std::span<const Triangle> tris,
+                                                 const AccelBuildConfig& config) {
+  if (!s.cpu) throw std::invalid_argument(std::string(s.name) + " has no CPU implementation");
+  return s.cpu(tris, config);
+}
+
+std::unique_ptr<GpuTraversal> makeStreamStructure(const Structure& s, std::span<const Triangle> tris,
+                                                  const GpuTraversalConfig& config) {
+  if (!s.stream) throw std::invalid_argument(std::string(s.name) + " has no GPU stream implementation");
+  if (config.loopLimit < 1) throw std::invalid_argument("the loop limit (-l) must be at least 1");
+  return s.stream(tris, config);
+}
+
+std::unique_ptr<CpuAccelerator> makeMirrorStructure(const Structure& s, std::span<const Triangle> tris,
+                                                    const AccelBuildConfig& config) {
+  if (!s.mirror) throw std::invalid_argument(std::string(s.name) + " has no CPU mirror of a stream kernel");
+  return s.mirror(tris, config);
+}
+
+std::unique_ptr<CpuAccelerator> makeCpuStructure(std::string_view nameOrNumber, std::span<const Triangle> tris,
+                                                 const AccelBuildConfig& config) {
+  return makeCpuStructure(resolveStructure(nameOrNumber, Cpu), tris, config);
+}
+
+std::unique_ptr<GpuTraversal> makeStreamStructure(std::string_view nameOrNumber, std::span<const Triangle> tris,
+                                                  const GpuTraversalConfig& config) {
+  return makeStreamStructure(resolveStructure(nameOrNumber, Gpu), tris, config);
+}
+
+std::vector<BuildParam> unusedParams(const Structure& s, RendererId renderer, const std::vector<BuildParam>& given) {
+  const std::vector<BuildParam> read = s.readsOn(renderer);
+  std::vector<BuildParam> unused;
+  for (BuildParam p : given)
+    if (std::find(read.begin(), read.end(), p) == read.end()) unused.push_back(p);
+  return unused;
+}
+
+}  // namespace passtrace

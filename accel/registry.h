@@ -1,0 +1,123 @@
+#pragma once
+// The registry of acceleration structures: one row per structure, holding
+// everything that identifies it. The command line (-a, --list, --help), the
+// memory check, the JSON report, the tests and the benchmark scripts (through
+// `passtrace --list --json`) all read this table; nothing else lists
+// structures by hand. Adding a structure is one family folder under accel/
+// (and kernels_glsl/) plus one row in registry.cpp.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "accel/cpu_accelerator.h"
+#include "accel/gpu_traversal.h"
+
+namespace passtrace {
+
+// The four renderers a run can use (-r), with tracy's ids.
+enum class RendererId : int {
+  OpenGl = 0,  // rasterized preview: no structure
+  Cpu = 1,     // passtrace's CPU ray tracer
+  Gpu = 2,     // the GPU stream ray tracer (fragment-pass kernels)
+  Embree = 3   // the CPU ray tracer tracing through Intel Embree (the baseline)
+};
+inline constexpr RendererId kRenderers[] = {RendererId::OpenGl, RendererId::Cpu, RendererId::Gpu, RendererId::Embree};
+// "opengl", "cpu", "gpu", "embree": the names of --list and the JSON report.
+std::string_view rendererName(RendererId renderer);
+// "OpenGL preview", "CPU", "GPU stream", "Embree": for messages.
+std::string_view rendererTitle(RendererId renderer);
+
+// A set of renderers, as bits 1 << id.
+struct RendererSet {
+  uint8_t bits = 0;
+  constexpr RendererSet() = default;
+  constexpr RendererSet(std::initializer_list<RendererId> renderers) {
+    for (RendererId r : renderers) bits |= uint8_t(1u << int(r));
+  }
+  constexpr bool has(RendererId r) const { return bits & (1u << int(r)); }
+};
+
+// Build and traversal parameters a structure may read. A flag given on the
+// command line that the chosen structure does not read is reported once as a
+// warning (as pbrt-v4 reports unused parameters).
+enum class BuildParam {
+  SwapChildren,    // -c: K/K child swap probability (AccelBuildConfig::kayKajiya)
+  GsTries,         // -t: Goldsmith/Salmon constructions (gsTries)
+  GridMultiplier,  // -g: uniform grid resolution (gridMultiplier)
+  KdMinElements,   // -e: kd-tree internal-node minimum (kdMinElements)
+  KdMaxDepth,      // -d: kd-tree depth limit (kdMaxDepth)
+  GridKernels,     // --grid-kernels: the GPU grid's merged or split kernels
+  LoopLimit,       // -l: GPU traversal steps per pass (every stream structure)
+  PageTexels,      // --page-texels: GPU data texture size (every stream structure)
+  TriangleTest,    // --triangle-test: every structure but Embree
+};
+// The flag a parameter is given with, as --help shows it ("-g/--grid-multiplier").
+std::string_view buildParamFlag(BuildParam param);
+
+// Peak resident bytes per triangle of a run, measured (apps' memory check):
+// the slope between 1 M and 2 M triangles of the procedural "spheres" scene,
+//   /usr/bin/time -f %M passtrace -s spheres --triangles N -r R -a A -w 64 -b 1 -t 1
+// on llvmpipe (GPU runs include llvmpipe's texture copies). 0 = not measured:
+// the check then assumes the largest of the same renderer's structures.
+struct MemoryModel {
+  double cpuBytesPerTriangle = 0;  // on the CPU renderer (and Embree's)
+  double gpuBytesPerTriangle = 0;  // on the GPU stream renderer
+};
+
+using CpuFactory = std::unique_ptr<CpuAccelerator> (*)(std::span<const Triangle>, const AccelBuildConfig&);
+using StreamFactory = std::unique_ptr<GpuTraversal> (*)(std::span<const Triangle>, const GpuTraversalConfig&);
+
+struct Structure {
+  std::string_view name;         // -a NAME; also AccelStats::name of what it builds
+  std::string_view family;       // its folder: accel/<family>/, kernels_glsl/<family>/
+  std::string_view description;  // one line for --list and --help
+  RendererSet renderers;         // the renderers that implement it
+  // Thesis Table 4 number, and the renderers whose column gives it that
+  // number (-r 2 -a 2 is kd-restart, -r 1 -a 2 is kd-tree).
+  std::optional<int> number;
+  RendererSet numberedOn;
+  CpuFactory cpu = nullptr;        // -r 1 (and -r 3 for the Embree row)
+  StreamFactory stream = nullptr;  // -r 2
+  // The stream kernel's algorithm on the CPU over the same texels: counts the
+  // same steps as the GPU (tests compare them). Null where there is none.
+  CpuFactory mirror = nullptr;
+  MemoryModel memory;
+  std::vector<BuildParam> reads;  // besides the renderer's own (LoopLimit, PageTexels, TriangleTest)
+
+  bool runsOn(RendererId r) const { return renderers.has(r); }
+  // The parameters a run of this structure on `renderer` reads.
+  std::vector<BuildParam> readsOn(RendererId renderer) const;
+};
+
+// Every structure, in the order of --list (thesis numbers first).
+const std::vector<Structure>& structures();
+// The row named `name`, or null.
+const Structure* findStructure(std::string_view name);
+// Resolves -a for a renderer: a name, or a thesis number in that renderer's
+// column. Throws std::invalid_argument with one line listing the valid
+// choices for that renderer. The OpenGL preview has none.
+const Structure& resolveStructure(std::string_view nameOrNumber, RendererId renderer);
+
+// Builds `s` for a renderer. Throw std::invalid_argument when `s` does not
+// run there. The CPU ones hold a span of tris: keep the triangles alive.
+std::unique_ptr<CpuAccelerator> makeCpuStructure(const Structure& s, std::span<const Triangle> tris,
+                                                 const AccelBuildConfig& config = {});
+std::unique_ptr<GpuTraversal> makeStreamStructure(const Structure& s, std::span<const Triangle> tris,
+                                                  const GpuTraversalConfig& config = {});
+std::unique_ptr<CpuAccelerator> makeMirrorStructure(const Structure& s, std::span<const Triangle> tris,
+                                                    const AccelBuildConfig& config = {});
+// Shorthands for tests and tools: resolveStructure + make.
+std::unique_ptr<CpuAccelerator> makeCpuStructure(std::string_view nameOrNumber, std::span<const Triangle> tris,
+                                                 const AccelBuildConfig& config = {});
+std::unique_ptr<GpuTraversal> makeStreamStructure(std::string_view nameOrNumber, std::span<const Triangle> tris,
+                                                  const GpuTraversalConfig& config = {});
+
+// The flags in `given` that `s` on `renderer` does not read, in `given`'s order.
+std::vector<BuildParam> unusedParams(const Structure& s, RendererId renderer, const std::vector<BuildParam>& given);
+
+}  // namespace passtrace

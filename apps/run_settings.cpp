@@ -1,0 +1,50 @@
+#include "apps/run_settings.h"
+
+#include <map>
+#include <stdexcept>
+
+namespace passtrace {
+
+RunSettings toRunSettings(const Options& o) {
+  RunSettings s;
+  s.renderer = RendererId(o.renderer);  // the parser checked 0-3
+  s.structure = o.accelerator;
+  s.structureGiven = o.accelGiven;
+  s.scene = o.scene;
+  if (!o.bartDir.empty()) s.sceneOptions.bartDir = o.bartDir;
+  s.sceneOptions.time = o.time;
+  s.sceneOptions.triangles = o.triangles;
+  s.width = o.width, s.height = o.height;
+  s.bounces = o.bounces, s.repeats = o.repeats, s.angles = o.angles;
+  s.dumpImages = o.dumpImages;
+  AccelBuildConfig& build = s.gpu.build;
+  build.kayKajiya.swapProbability = 0.5f * float(o.swapChildren);
+  build.gsTries = o.gsTries;
+  build.gridMultiplier = o.gridMultiplier;
+  build.kdMinElements = o.kdMinElements;
+  build.kdMaxDepth = o.kdMaxDepth;
+  build.triangleTest = *triangleTestByName(o.triangleTest);  // the parser accepts only valid names
+  s.gpu.loopLimit = o.loopLimit;
+  s.gpu.gridKernels = o.gridKernels == "split" ? GridKernels::Split : GridKernels::Merged;
+  s.gpu.maxPageTexels = o.pageTexels;
+  s.threads = o.threads;
+  s.eye = o.eye, s.lookAt = o.lookAt, s.up = o.up, s.fov = o.fov;
+  s.output = o.output, s.hits = o.hits, s.json = o.json, s.heatmap = o.heatmap;
+  s.glBackend = parseGlBackend(o.glBackend);
+  static const std::map<std::string, BuildParam> kFlags = {
+      {"--swap-children", BuildParam::SwapChildren},   {"--gs-tries", BuildParam::GsTries},
+      {"--grid-multiplier", BuildParam::GridMultiplier}, {"--kd-min-elements", BuildParam::KdMinElements},
+      {"--kd-max-depth", BuildParam::KdMaxDepth},     {"--grid-kernels", BuildParam::GridKernels},
+      {"--loop-limit", BuildParam::LoopLimit},        {"--page-texels", BuildParam::PageTexels},
+      {"--triangle-test", BuildParam::TriangleTest}};
+  for (const std::string& flag : o.givenFlags) s.givenParams.push_back(kFlags.at(flag));
+  s.stats = o.stats;
+  return s;
+}
+
+Progress::Mode progressMode(const Options& o) {
+  if (o.quiet) return Progress::Mode::Quiet;
+  return o.progress ? Progress::Mode::Always : Progress::Mode::Auto;
+}
+
+}  // namespace passtrace

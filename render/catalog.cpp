@@ -1,0 +1,75 @@
+#include "render/catalog.h"
+
+#include <algorithm>
+
+#include "accel/registry.h"
+#include "passtrace_version.h"
+#include "scenes/scene_registry.h"
+
+namespace passtrace {
+namespace {
+
+std::vector<std::string> rendererNames(const Structure& s) {
+  std::vector<std::string> names;
+  for (RendererId r : kRenderers)
+    if (s.runsOn(r)) names.emplace_back(rendererName(r));
+  return names;
+}
+
+// The names with thesis numbers; the procedural scene has none.
+std::vector<std::pair<std::string, nlohmann::json>> sceneRows() {
+  std::vector<std::pair<std::string, nlohmann::json>> rows;
+  const std::vector<std::string> builtin = builtinSceneNames();
+  for (size_t i = 0; i < builtin.size(); ++i) rows.emplace_back(builtin[i], int(i));
+  rows.emplace_back("spheres", nullptr);
+  return rows;
+}
+
+}  // namespace
+
+nlohmann::json catalogJson() {
+  nlohmann::json renderers = nlohmann::json::array();
+  for (RendererId r : kRenderers) renderers.push_back({{"name", rendererName(r)}, {"id", int(r)}});
+  nlohmann::json accelerators = nlohmann::json::array();
+  for (const Structure& s : structures())
+    accelerators.push_back({{"name", s.name},
+                            {"renderers", rendererNames(s)},
+                            {"number", s.number ? nlohmann::json(*s.number) : nlohmann::json(nullptr)},
+                            {"description", s.description}});
+  nlohmann::json scenes = nlohmann::json::array();
+  for (const auto& [name, number] : sceneRows()) scenes.push_back({{"name", name}, {"number", number}});
+  return {{"version", kVersion}, {"renderers", renderers}, {"accelerators", accelerators}, {"scenes", scenes}};
+}
+
+std::string catalogText() {
+  std::string text = "Renderers (-r):\n";
+  for (RendererId r : kRenderers)
+    text += "  " + std::to_string(int(r)) + " " + std::string(rendererName(r)) + ": " +
+            std::string(rendererTitle(r)) + "\n";
+  size_t width = 0;
+  for (const Structure& s : structures()) width = std::max(width, s.name.size());
+  text += "Structures (-a NAME, or the thesis number in the renderer's column):\n";
+  for (const Structure& s : structures()) {
+    std::string renderers;
+    for (const std::string& r : rendererNames(s)) renderers += (renderers.empty() ? "" : ",") + r;
+    std::string number = "  ";
+    if (s.number) {
+      number = std::to_string(*s.number);
+      if (!s.numberedOn.has(RendererId::Cpu) || !s.numberedOn.has(RendererId::Gpu))
+        number += s.numberedOn.has(RendererId::Gpu) ? " on gpu" : " on cpu";
+    }
+    number.resize(9, ' ');
+    std::string name(s.name);
+    name.resize(width, ' ');
+    std::string on = "[" + renderers + "]";
+    on.resize(13, ' ');
+    text += "  " + number + name + "  " + on + " " + std::string(s.description) + "\n";
+  }
+  text += "Scenes (-s NAME or number, or a .obj/.aff/.nff/.gltf/.glb file):\n";
+  for (const auto& [name, number] : sceneRows())
+    text += "  " + (number.is_null() ? std::string(" ") : std::to_string(int(number))) + " " + name +
+            (number.is_null() ? " (procedural, --triangles)" : "") + "\n";
+  return text;
+}
+
+}  // namespace passtrace

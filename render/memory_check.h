@@ -1,0 +1,30 @@
+#pragma once
+// "Say so before trying": the memory a run will need, estimated from the
+// triangle count and the image size before anything is built, against what
+// the machine has available. A run that cannot fit ends with one line
+// instead of swapping or being killed half-way. Bytes per triangle come from
+// the structure's registry row (MemoryModel).
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "accel/registry.h"
+
+namespace passtrace {
+
+// Peak resident bytes of a run of `structure` (null for the preview) on
+// `renderer` over `triangles` triangles and `pixels` pixels, with a 25 % margin.
+uint64_t estimatedRunBytes(RendererId renderer, const Structure* structure, uint64_t triangles, uint64_t pixels);
+
+// MemAvailable from /proc/meminfo, lowered to the cgroup's memory.max less
+// its current use where one is set; nullopt when neither can be read.
+std::optional<uint64_t> availableMemoryBytes();
+
+// Throws std::runtime_error("SCENE: N triangles with STRUCTURE on the ...
+// renderer need about X GiB; Y GiB available (nothing was built)") when the
+// estimate exceeds what is available.
+void checkRunFitsInMemory(const std::string& scene, RendererId renderer, const Structure* structure,
+                          uint64_t triangles, uint64_t pixels);
+
+}  // namespace passtrace

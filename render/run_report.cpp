@@ -1,0 +1,79 @@
+#include "render/run_report.h"
+
+#include <cstdio>
+
+namespace passtrace {
+namespace {
+
+template <typename T>
+nlohmann::json orNull(const std::optional<T>& value) {
+  return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
+}
+
+std::string format(const char* fmt, auto... args) {
+  const int n = std::snprintf(nullptr, 0, fmt, args...);
+  std::string text(size_t(n) + 1, '\0');
+  std::snprintf(text.data(), text.size(), fmt, args...);
+  text.pop_back();
+  return text;
+}
+
+}  // namespace
+
+nlohmann::json toJson(const RunReport& r) {
+  nlohmann::json frames = nlohmann::json::array();
+  for (const FrameReport& f : r.frames)
+    frames.push_back({{"angle", f.angle}, {"frame_ms", f.frameMs}, {"rays", f.rays}, {"passes", f.passes}});
+  return {
+      {"schema_version", kRunReportSchemaVersion},
+      {"version", r.version},
+      {"scene", r.scene},
+      {"triangles", r.triangles},
+      {"renderer", r.renderer},
+      {"renderer_id", r.rendererId},
+      {"accelerator", r.structure.name},
+      {"accelerator_id", orNull(r.structureNumber)},
+      {"triangle_test", orNull(r.triangleTest)},
+      {"width", r.width},
+      {"height", r.height},
+      {"bounces", r.bounces},
+      {"repeats", r.repeats},
+      {"angles", r.angles},
+      {"rays", r.rays},
+      {"build_ms", r.structure.buildMs},
+      {"frame_ms", r.frameMs},
+      {"mrays_per_s", r.mraysPerS},
+      {"passes", r.passes},
+      {"steps_per_ray", r.stepsPerRay},
+      {"triangle_tests_per_ray", r.triangleTestsPerRay},
+      {"accel_floats_per_triangle", r.structure.floatsPerTriangle},
+      {"accel_nodes", r.structure.nodes},
+      {"accel_leaves", r.structure.leaves},
+      {"accel_depth", r.structure.depth},
+      {"accel_references", r.structure.references},
+      {"steps", r.steps},
+      {"triangle_tests", r.triangleTests},
+      {"gl_renderer", orNull(r.glRenderer)},
+      {"gl_backend", orNull(r.glBackend)},
+      {"frames", frames},
+      {"warnings", r.warnings},
+  };
+}
+
+std::string summaryText(const RunReport& r, bool withStats) {
+  const AccelStats& s = r.structure;
+  std::string text;
+  if (withStats) {
+    text += format("structure: %s, %zu nodes, %zu leaves, %zu triangle references, depth %u, %.2f floats/triangle\n",
+                   s.name.c_str(), s.nodes, s.leaves, s.references, s.depth, s.floatsPerTriangle);
+    text += format("per ray: %.2f traversal steps, %.2f triangle tests\n", r.stepsPerRay, r.triangleTestsPerRay);
+  }
+  text += format("%s: %zu triangles; %s renderer, %s (build %.1f ms, %.2f floats/triangle)%s%s\n", r.scene.c_str(),
+                 r.triangles, r.renderer.c_str(), s.name.c_str(), s.buildMs, s.floatsPerTriangle,
+                 r.glRenderer ? " on " : "", r.glRenderer ? r.glRenderer->c_str() : "");
+  text += format("%dx%d, %d bounces, %zu view(s): %.0f rays in %.2f ms per frame = %.3f Mrays/s (%.0f passes)\n",
+                 r.width, r.height, r.bounces, r.angles, r.rays, r.frameMs, r.mraysPerS, r.passes);
+  return text;
+}
+
+}  // namespace passtrace

@@ -1,0 +1,49 @@
+#pragma once
+// What one run measured, in one struct with one JSON writer (--json) and one
+// text summary (stdout). schema_version counts changes to the JSON's keys;
+// every key of schema 1 kept its name and meaning.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "accel/cpu_accelerator.h"
+
+namespace passtrace {
+
+inline constexpr int kRunReportSchemaVersion = 2;  // 2: schema_version, version, warnings
+
+struct FrameReport {
+  size_t angle = 0;
+  double frameMs = 0;
+  uint64_t rays = 0;
+  uint64_t passes = 0;
+};
+
+struct RunReport {
+  std::string version;                 // passtrace's
+  std::string scene;
+  size_t triangles = 0;
+  std::string renderer;                // rendererName()
+  int rendererId = 0;
+  AccelStats structure;                // name "none" for the preview
+  std::optional<int> structureNumber;  // thesis number in the renderer's column
+  std::optional<std::string> triangleTest;  // null for the preview; "embree" for Embree
+  int width = 0, height = 0, bounces = 0, repeats = 0;
+  size_t angles = 0;
+  // Means over the angles of each angle's fastest repeat.
+  double rays = 0, frameMs = 0, mraysPerS = 0, passes = 0, steps = 0, triangleTests = 0;
+  double stepsPerRay = 0, triangleTestsPerRay = 0;
+  std::optional<std::string> glRenderer, glBackend;  // GL runs only
+  std::vector<FrameReport> frames;
+  std::vector<std::string> warnings;  // also printed on stderr unless --quiet
+};
+
+nlohmann::json toJson(const RunReport& report);
+// The two summary lines (three with `withStats`) passtrace prints.
+std::string summaryText(const RunReport& report, bool withStats);
+
+}  // namespace passtrace

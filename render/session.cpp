@@ -1,0 +1,216 @@
+#include "render/session.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <stdexcept>
+
+#include "passtrace_version.h"
+#include "render/atomic_file.h"
+#include "render/camera.h"
+#include "render/camera_path.h"
+#include "render/heatmap.h"
+#include "render/image_output.h"
+#include "render/memory_check.h"
+#include "render/renderer.h"
+#include "scenes/scene_scale.h"
+#include "stream/inout_stream.h"
+
+namespace fs = std::filesystem;
+
+namespace passtrace {
+namespace {
+
+std::vector<CameraSpec> cameraViews(const Scene& scene, const RunSettings& o) {
+  CameraSpec base = scene.camera;
+  if (o.fov) base.fovDegrees = *o.fov;
+  std::vector<CameraSpec> views;
+  if (o.angles == 1 || scene.fixedView) {
+    views.assign(size_t(o.angles), base);
+  } else {
+    Scene pathScene = scene;
+    pathScene.camera = base;
+    for (int k = 0; k < o.angles; ++k) views.push_back(cameraPathView(pathScene, k, o.angles));
+  }
+  // The command line speaks the file's units; the scene may be rescaled by 2^k.
+  const auto toScene = [&](const char* option, const glm::vec3& p) {
+    const glm::vec3 scaled = scaleByPowerOfTwo(p, scene.scaleExponent);
+    if (!std::isfinite(scaled.x) || !std::isfinite(scaled.y) || !std::isfinite(scaled.z))
+      throw std::runtime_error(std::string(option) + ": too far from the scene for single precision (the scene is "
+                               "rescaled by 2^" + std::to_string(scene.scaleExponent) + ")");
+    return scaled;
+  };
+  for (CameraSpec& v : views) {
+    if (o.eye) v.eye = toScene("--eye", *o.eye);
+    if (o.lookAt) v.lookAt = toScene("--look-at", *o.lookAt);
+    if (o.up) v.up = *o.up;
+  }
+  return views;
+}
+
+// "out.png", k -> "out_k.png"
+fs::path numberedPath(const fs::path& path, int k) {
+  return path.parent_path() / (path.stem().string() + "_" + std::to_string(k) + path.extension().string());
+}
+
+void checkOutputs(const RunSettings& o) {
+  if (!o.output.empty()) {
+    checkWritable(o.output);
+    checkImageFormat(o.output);
+  }
+  if (!o.hits.empty()) {
+    checkWritable(o.hits);
+    if (fs::path(o.hits).extension() != ".exr") throw std::runtime_error(o.hits + ": hit buffers are OpenEXR (.exr) files");
+  }
+  if (!o.json.empty()) checkWritable(o.json);
+  if (!o.heatmap.empty()) {
+    checkWritable(o.heatmap);
+    checkImageFormat(o.heatmap);
+  }
+}
+
+// In double: the cross product of tiny edges underflows in float.
+bool hasArea(const Triangle& t) {
+  const glm::dvec3 v0(t.v0);
+  const glm::dvec3 n = glm::cross(glm::dvec3(t.v1) - v0, glm::dvec3(t.v2) - v0);
+  return n != glm::dvec3(0.0);
+}
+
+// The structure -a names on this renderer (null for the preview), and a
+// warning for each given flag it does not read.
+const Structure* chooseStructure(const RunSettings& o, RunReport& report, Progress& progress) {
+  auto warn = [&](const std::string& message) {
+    report.warnings.push_back(message);
+    progress.warn(message);
+  };
+  const Structure* structure = nullptr;
+  if (o.renderer == RendererId::Embree) {
+    structure = findStructure("embree");
+    if (!structure) throw std::runtime_error("this passtrace was built without Embree (-r 3 is not available)");
+    if (o.structureGiven && o.structure != "embree") warn("-a/--accel is not read by the Embree renderer (ignored)");
+  } else if (o.renderer == RendererId::OpenGl) {
+    if (o.structureGiven) warn("-a/--accel is not read by the OpenGL preview (ignored)");
+  } else {
+    structure = &resolveStructure(o.structure, o.renderer);
+  }
+  std::vector<BuildParam> unused = o.givenParams;
+  if (structure) unused = unusedParams(*structure, o.renderer, o.givenParams);
+  for (BuildParam p : unused)
+    warn(std::string(buildParamFlag(p)) + " is not read by " +
+         (structure ? std::string(structure->name) + " on the " : std::string("the ")) +
+         std::string(rendererTitle(o.renderer)) + " renderer (ignored)");
+  return structure;
+}
+
+}  // namespace
+
+RunReport runSession(const RunSettings& o, Progress& progress) {
+  RunReport report;
+  report.version = kVersion;
+  // Reject an unknown structure before loading anything.
+  const Structure* structure = chooseStructure(o, report, progress);
+  const bool cpuTraced = o.renderer == RendererId::Cpu || o.renderer == RendererId::Embree;
+  if (cpuTraced && (long long)o.width * o.height > 16384LL * 16384LL)
+    throw std::runtime_error("image " + std::to_string(o.width) + "x" + std::to_string(o.height) +
+                             " is too large for the CPU renderer (at most 16384x16384 pixels)");
+  if (o.renderer == RendererId::OpenGl && (!o.hits.empty() || !o.heatmap.empty()))
+    throw std::runtime_error("--hits and --heatmap need a ray tracer (-r 1 or -r 2)");
+  checkOutputs(o);
+  // The GL first: its limits on the image size are known before anything is built.
+  std::unique_ptr<GlContext> gl;
+  if (!cpuTraced) {
+    std::string notices;
+    gl = GlContext::create(o.glBackend, &notices);
+    if (!notices.empty()) progress.notice(notices);
+    InOutStream::checkSize(o.width, o.height);
+    report.glRenderer = gl->renderer();
+    report.glBackend = gl->backend();
+  }
+  // Say so before trying: the procedural scene's size is known before it is
+  // made, a file's once it is read.
+  const uint64_t pixels = uint64_t(o.width) * uint64_t(o.height);
+  if (o.scene == "spheres")
+    checkRunFitsInMemory(o.scene, o.renderer, structure, sphereFieldTriangles(o.sceneOptions.triangles), pixels);
+  progress.stage("loading " + o.scene);
+  const Scene scene = loadScene(o.scene, o.sceneOptions);
+  checkRunFitsInMemory(o.scene, o.renderer, structure, scene.triangles.size(), pixels);
+  if (scene.triangles.empty()) throw std::runtime_error(o.scene + ": the scene has no triangles");
+  if (std::none_of(scene.triangles.begin(), scene.triangles.end(), hasArea)) {
+    report.warnings.push_back(o.scene + ": every triangle has zero area; only the background is visible");
+    progress.warn(report.warnings.back());
+  }
+  const std::vector<CameraSpec> views = cameraViews(scene, o);
+  for (const CameraSpec& v : views) makeCameraBasis(v, o.width, o.height);  // reject a bad camera before building
+
+  if (structure)
+    progress.stage("building " + std::string(structure->name) + " over " + std::to_string(scene.triangles.size()) +
+                   " triangles" + (o.renderer == RendererId::Gpu ? " and uploading it" : ""));
+  RendererConfig config{o.width, o.height, o.bounces, o.threads, o.gpu};
+  const std::unique_ptr<Renderer> renderer = makeRenderer(o.renderer, structure, scene, config);
+  if (o.renderer == RendererId::Gpu) {
+    // One untimed frame first: llvmpipe compiles each kernel on its first draw.
+    progress.stage("compiling the kernels");
+    renderer->render(views.front(), false);
+  }
+
+  // Per angle, the fastest of the repeats; the frame of angle 0 is kept for
+  // the image and hit outputs.
+  FrameResult first;
+  double sumMs = 0, sumRays = 0;
+  FrameStats total;
+  for (size_t k = 0; k < views.size(); ++k) {
+    FrameResult best;
+    for (int r = 0; r < o.repeats; ++r) {
+      progress.frame(k * size_t(o.repeats) + size_t(r), views.size() * size_t(o.repeats));
+      FrameResult frame = renderer->render(views[k], k == 0 && r == 0 && !o.hits.empty());
+      if (r == 0 || frame.stats.frameMs < best.stats.frameMs) {
+        if (k == 0 && r == 0) first.primaryHits = std::move(frame.primaryHits);
+        best = std::move(frame);
+      }
+    }
+    report.frames.push_back({k, best.stats.frameMs, best.stats.rays, best.stats.passes});
+    sumMs += best.stats.frameMs;
+    sumRays += double(best.stats.rays);
+    total.passes += best.stats.passes;
+    total.steps += best.stats.steps;
+    total.triangleTests += best.stats.triangleTests;
+    if (k == 0) {
+      first.width = best.width, first.height = best.height, first.rgb = best.rgb, first.stats = best.stats;
+      first.steps = best.steps;
+    }
+    if (o.dumpImages && !o.output.empty()) writeImage(numberedPath(o.output, int(k)), best.width, best.height, best.rgb);
+  }
+  progress.finish();
+
+  const double n = double(views.size());
+  report.scene = scene.name;
+  report.triangles = scene.triangles.size();
+  report.renderer = std::string(rendererName(o.renderer));
+  report.rendererId = int(o.renderer);
+  report.structure = renderer->structureStats();
+  if (structure && structure->number && structure->numberedOn.has(o.renderer)) report.structureNumber = structure->number;
+  if (o.renderer == RendererId::Embree) report.triangleTest = "embree";
+  else if (o.renderer != RendererId::OpenGl) report.triangleTest = triangleTestName(o.gpu.build.triangleTest);
+  report.width = o.width, report.height = o.height, report.bounces = o.bounces, report.repeats = o.repeats;
+  report.angles = views.size();
+  report.rays = sumRays / n;
+  report.frameMs = sumMs / n;
+  report.mraysPerS = report.frameMs > 0 ? report.rays / report.frameMs / 1000.0 : 0.0;
+  report.passes = double(total.passes) / n;
+  report.steps = double(total.steps) / n;
+  report.triangleTests = double(total.triangleTests) / n;
+  report.stepsPerRay = sumRays > 0 ? double(total.steps) / sumRays : 0.0;
+  report.triangleTestsPerRay = sumRays > 0 ? double(total.triangleTests) / sumRays : 0.0;
+
+  if (!o.output.empty()) writeImage(o.output, first.width, first.height, first.rgb);
+  if (!o.hits.empty()) {
+    // Hit distances in the file's units: 2^-k undoes the rescaling exactly.
+    for (HitRecord& h : first.primaryHits) h.t = std::ldexp(h.t, -scene.scaleExponent);
+    writeHitBuffer(o.hits, first.width, first.height, first.primaryHits);
+  }
+  if (!o.heatmap.empty()) writeImage(o.heatmap, first.width, first.height, heatmapRgb(first.steps));
+  if (!o.json.empty()) writeTextFile(o.json, toJson(report).dump(2) + "\n");
+  return report;
+}
+
+}  // namespace passtrace

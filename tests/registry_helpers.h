@@ -1,0 +1,42 @@
+#pragma once
+// Tests name structures as the command line does: by the thesis number in a
+// renderer's column, or by name (accel/registry.h).
+
+#include <algorithm>
+#include <memory>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "accel/registry.h"
+
+namespace passtrace::testing_registry {
+
+inline const Structure& cpuRow(int number) { return resolveStructure(std::to_string(number), RendererId::Cpu); }
+inline std::string cpuName(int number) { return std::string(cpuRow(number).name); }
+inline std::unique_ptr<CpuAccelerator> cpuStructure(int number, std::span<const Triangle> tris,
+                                                    const AccelBuildConfig& config = {}) {
+  return makeCpuStructure(cpuRow(number), tris, config);
+}
+
+}  // namespace passtrace::testing_registry
+
+namespace passtrace::testing_registry {
+
+// Every structure on every ray tracer, as (renderer id, "-a" argument and its
+// variant flags): the GPU rows that read --grid-kernels once per kernel set.
+inline std::vector<std::pair<int, std::string>> everyStructureRun() {
+  std::vector<std::pair<int, std::string>> runs;
+  for (RendererId r : {RendererId::Gpu, RendererId::Cpu, RendererId::Embree})
+    for (const Structure& s : structures()) {
+      if (!s.runsOn(r)) continue;
+      runs.emplace_back(int(r), std::string(s.name));
+      const auto reads = s.readsOn(r);
+      if (std::find(reads.begin(), reads.end(), BuildParam::GridKernels) != reads.end())
+        runs.emplace_back(int(r), std::string(s.name) + " --grid-kernels split");
+    }
+  return runs;
+}
+
+}  // namespace passtrace::testing_registry

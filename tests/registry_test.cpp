@@ -1,0 +1,110 @@
+// The registry of structures (accel/registry.h): rows, thesis numbering per
+// renderer, name resolution and its errors, unused-parameter reporting.
+// Runs without a GL context.
+#include <gtest/gtest.h>
+
+#include <set>
+#include <stdexcept>
+#include <string>
+
+#include "accel/registry.h"
+#include "tests/test_meshes.h"
+
+namespace passtrace {
+namespace {
+
+TEST(Registry, NamesAreUniqueAndEachRowHasItsFactories) {
+  std::set<std::string_view> names;
+  for (const Structure& s : structures()) {
+    EXPECT_TRUE(names.insert(s.name).second) << s.name;
+    EXPECT_FALSE(s.family.empty()) << s.name;
+    EXPECT_FALSE(s.description.empty()) << s.name;
+    EXPECT_EQ(s.description.find('\n'), std::string_view::npos) << s.name;
+    // A renderer is listed exactly when the row can build for it.
+    EXPECT_EQ(s.runsOn(RendererId::Cpu) || s.runsOn(RendererId::Embree), s.cpu != nullptr) << s.name;
+    EXPECT_EQ(s.runsOn(RendererId::Gpu), s.stream != nullptr) << s.name;
+    EXPECT_FALSE(s.runsOn(RendererId::OpenGl)) << s.name;
+    if (s.stream) EXPECT_NE(s.mirror, nullptr) << s.name << ": a stream structure needs its kernel's CPU mirror";
+    EXPECT_EQ(s.number.has_value(), s.numberedOn.bits != 0) << s.name;
+  }
+}
+
+// Thesis Table 4: the CPU and GPU columns number different structures.
+TEST(Registry, ThesisNumbersPerRendererColumn) {
+  const char* cpu[] = {"kk-bvh", "gs-bvh", "kd-tree", "kd-pbrt", "grid", "kk-bvh-recursive", "gs-bvh-recursive",
+                       "octree"};
+  const char* gpu[] = {"kk-bvh", "gs-bvh", "kd-restart", "kd-backtrack", "grid"};
+  for (int i = 0; i < 8; ++i) {
+    EXPECT_EQ(resolveStructure(std::to_string(i), RendererId::Cpu).name, cpu[i]);
+    EXPECT_EQ(resolveStructure(cpu[i], RendererId::Cpu).name, cpu[i]);
+  }
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(resolveStructure(std::to_string(i), RendererId::Gpu).name, gpu[i]);
+  EXPECT_THROW(resolveStructure("5", RendererId::Gpu), std::invalid_argument);
+  EXPECT_THROW(resolveStructure("8", RendererId::Cpu), std::invalid_argument);
+  EXPECT_THROW(resolveStructure("-1", RendererId::Cpu), std::invalid_argument);
+  EXPECT_THROW(resolveStructure("", RendererId::Cpu), std::invalid_argument);
+  // The kernels' CPU mirrors run on the CPU by name only.
+  EXPECT_EQ(resolveStructure("kd-restart", RendererId::Cpu).name, "kd-restart");
+  EXPECT_EQ(resolveStructure("grid-stream", RendererId::Cpu).name, "grid-stream");
+}
+
+TEST(Registry, UnknownOrMisplacedNamesGiveOneLineListingTheValidOnes) {
+  try {
+    resolveStructure("bogus", RendererId::Cpu);
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("unknown accelerator 'bogus'"), std::string::npos) << what;
+    EXPECT_NE(what.find("5 kk-bvh-recursive"), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos);
+  }
+  try {
+    resolveStructure("kd-tree", RendererId::Gpu);
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("does not run on the GPU stream renderer"), std::string::npos) << what;
+    EXPECT_NE(what.find("2 kd-restart"), std::string::npos) << what;
+  }
+  EXPECT_THROW(resolveStructure("0", RendererId::OpenGl), std::invalid_argument);
+}
+
+TEST(Registry, BuildingForARendererWithoutAnImplementationThrows) {
+  const auto tris = testmesh::singleTriangle();
+  EXPECT_THROW(makeStreamStructure(*findStructure("octree"), tris), std::invalid_argument);
+  EXPECT_THROW(makeMirrorStructure(*findStructure("kd-tree"), tris), std::invalid_argument);
+  GpuTraversalConfig zeroLoop;
+  zeroLoop.loopLimit = 0;
+  EXPECT_THROW(makeStreamStructure(*findStructure("kk-bvh"), tris, zeroLoop), std::invalid_argument);
+}
+
+TEST(Registry, UnusedParametersAreThoseTheRowDoesNotRead) {
+  const Structure& kd = *findStructure("kd-tree");
+  using P = BuildParam;
+  const std::vector<P> given = {P::GridMultiplier, P::KdMaxDepth, P::LoopLimit, P::TriangleTest};
+  EXPECT_EQ(unusedParams(kd, RendererId::Cpu, given), (std::vector<P>{P::GridMultiplier, P::LoopLimit}));
+  const Structure& grid = *findStructure("grid");
+  EXPECT_EQ(unusedParams(grid, RendererId::Gpu, {P::GridKernels, P::LoopLimit, P::PageTexels}), std::vector<P>{});
+  EXPECT_EQ(unusedParams(grid, RendererId::Cpu, {P::GridKernels, P::GridMultiplier}), std::vector<P>{P::GridKernels});
+  if (const Structure* embree = findStructure("embree"))
+    EXPECT_EQ(unusedParams(*embree, RendererId::Embree, {P::TriangleTest}), std::vector<P>{P::TriangleTest});
+}
+
+// Every row's CPU structure reports the row's name (the JSON's "accelerator").
+TEST(Registry, BuiltStructuresCarryTheRowName) {
+  const auto tris = testmesh::uvSphere(6, 8);
+  for (const Structure& s : structures()) {
+    if (s.cpu) EXPECT_EQ(makeCpuStructure(s, tris)->stats().name, s.name);
+    if (s.mirror) EXPECT_EQ(makeMirrorStructure(s, tris)->stats().name.substr(0, 4), s.name.substr(0, 4)) << s.name;
+  }
+}
+
+TEST(Registry, MemoryModelMeasuredForEveryRendererOfEveryRow) {
+  for (const Structure& s : structures()) {
+    if (s.runsOn(RendererId::Cpu) || s.runsOn(RendererId::Embree)) EXPECT_GT(s.memory.cpuBytesPerTriangle, 0) << s.name;
+    if (s.runsOn(RendererId::Gpu)) EXPECT_GT(s.memory.gpuBytesPerTriangle, 0) << s.name;
+  }
+}
+
+}  // namespace
+}  // namespace passtrace
