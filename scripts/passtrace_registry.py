@@ -27,24 +27,30 @@ def load(binary):
     return registry
 
 
-def structures(registry, renderer, numbered_only=False):
-    """Names of the structures that `renderer` implements, in the thesis's order.
+def numbers(registry, renderer):
+    """{name: thesis number} of the structures numbered on `renderer`.
 
-    A thesis number belongs to one structure per renderer, and the JSON gives one
-    number per row: on a renderer, the first row (registry order) with a number
-    owns it, later rows with the same number are unnumbered there (kd-tree owns 2
-    on the CPU; kd-restart, also 2, owns it on the GPU only). Numbered
-    structures come first by number, the others follow in registry order.
-    numbered_only keeps the numbered ones.
+    The JSON gives one number per row, but a number belongs to one structure per
+    renderer: on a renderer, the first row (registry order) with a number owns
+    it, and later rows with the same number are selected there by name only
+    (kd-tree owns 2 on the CPU; kd-restart, also 2, owns it on the GPU).
     """
-    rows = [r for r in registry["accelerators"] if renderer in r["renderers"]]
     owner = {}
-    for r in rows:
-        if r["number"] is not None:
+    for r in registry["accelerators"]:
+        if renderer in r["renderers"] and r["number"] is not None:
             owner.setdefault(r["number"], r["name"])
-    numbered = [owner[n] for n in sorted(owner)]
-    rest = [r["name"] for r in rows if r["name"] not in numbered]
-    return numbered if numbered_only else numbered + rest
+    return {name: n for n, name in owner.items()}
+
+
+def structures(registry, renderer, numbered_only=False):
+    """Names of the structures that `renderer` implements, in the thesis's order:
+    the numbered ones by number, then the others in registry order.
+    numbered_only keeps the numbered ones."""
+    numbered = sorted(numbers(registry, renderer).items(), key=lambda item: item[1])
+    names = [name for name, _ in numbered]
+    if not numbered_only:
+        names += [r["name"] for r in registry["accelerators"] if renderer in r["renderers"] and r["name"] not in names]
+    return names
 
 
 def renderer_id(registry, renderer):
