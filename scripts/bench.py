@@ -313,8 +313,9 @@ class Runner:
             tmp_json.unlink(missing_ok=True)
             raise
         wall = time.monotonic() - start
+        shown = shown_command(["RUN.json" if c == str(tmp_json) else c for c in cmd])
         rec = dict(meta)
-        rec.update({"args": args, "command": shown_command(["RUN.json" if c == str(tmp_json) else c for c in cmd]), "wall_s": round(wall, 3),
+        rec.update({"args": args, "command": shown, "wall_s": round(wall, 3),
                     "finished_at": datetime.datetime.now().isoformat(timespec="seconds"),
                     "returncode": proc.returncode})
         result = read_json(tmp_json) if proc.returncode == 0 else None

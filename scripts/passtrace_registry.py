@@ -15,7 +15,7 @@ def load(binary):
         raise SystemExit(f"{binary} --list --json: {e}")
     if proc.returncode != 0:
         last = (proc.stderr.strip().splitlines() or [f"exit status {proc.returncode}"])[-1]
-        raise SystemExit(f"{binary} --list --json failed: {last}")
+        raise SystemExit(f"{binary} --list --json failed: {last} (a passtrace from before the structure registry?)")
     try:
         registry = json.loads(proc.stdout)
         ids = {r["name"]: r["id"] for r in registry["renderers"]}
