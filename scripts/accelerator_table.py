@@ -3,7 +3,9 @@
 thesis's Tables 1 (ms per frame, GeForce 6800) and 3 (floats per triangle).
 
 Runs build/passtrace once per (scene, renderer, structure) in one session and
-prints a Markdown table; the per-run JSON goes to --out. Timings are the
+prints a Markdown table; the per-run JSON goes to --out. The structures are
+every one `passtrace --list --json` lists for each renderer, in the thesis's
+order (so the CPU rows include the GPU kernels' CPU mirrors). Timings are the
 minimum of -m repeats; compare them as ratios within one run.
 """
 import argparse
@@ -13,12 +15,11 @@ import subprocess
 import sys
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+import passtrace_registry  # noqa: E402
 from bench_report import THESIS_FLOATS, THESIS_MS  # noqa: E402  (Tables 1 and 3, one copy)
 
 # Thesis 10.2: per-scene grid resolution multipliers.
 GRID_MULTIPLIER = {"bunny": 1.1, "cornell": 0.6}
-GPU = ["kk-bvh", "gs-bvh", "kd-restart", "kd-backtrack", "grid"]
-CPU = ["kk-bvh", "gs-bvh", "kd-tree", "kd-pbrt", "grid", "kk-bvh-recursive", "gs-bvh-recursive", "octree"]
 
 
 def main():
@@ -32,17 +33,21 @@ def main():
     args = parser.parse_args()
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
+    registry = passtrace_registry.load(args.binary)
+    lists = [(passtrace_registry.renderer_id(registry, r), passtrace_registry.structures(registry, r))
+             for r in ("gpu", "cpu")]
 
     print("| scene | renderer | structure | frame ms | Mrays/s | floats/tri | steps/ray | tests/ray | build ms "
           "| thesis ms (6800) | ratio to thesis | thesis floats/tri |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for scene in args.scenes.split(","):
-        for renderer, names in (("2", GPU), ("1", CPU)):
+        for renderer, names in lists:
             for name in names:
                 result = out / f"{scene}_r{renderer}_{name}.json"
                 cmd = [args.binary, "-s", scene, "-r", renderer, "-a", name, "-w", str(args.size),
-                       "-b", str(args.bounces), "-m", str(args.repeats), "-g", str(GRID_MULTIPLIER.get(scene, 1.0)),
-                       "--json", str(result), "-q"]
+                       "-b", str(args.bounces), "-m", str(args.repeats)]
+                cmd += passtrace_registry.build_flags(name, grid_multiplier=GRID_MULTIPLIER.get(scene, 1.0))
+                cmd += ["--json", str(result), "-q"]
                 run = subprocess.run(cmd, capture_output=True, text=True)
                 if run.returncode != 0:
                     print(f"| {scene} | {renderer} | {name} | failed: {run.stderr.strip()} |")

@@ -2,7 +2,8 @@
 """Writes results.json, results.csv, the plots and REPORT.md of a benchmark run.
 
 Used by scripts/bench.py (`python3 scripts/bench.py --report-only` rewrites the
-report from the finished runs without running anything).
+report from the finished runs in runs/ without running anything). Only
+REPORT.md, results.csv and the PNGs are kept in git.
 """
 import csv
 import json
@@ -242,17 +243,19 @@ def write_report(out, results, modes, scene_defaults, plots):
     mrows = []
     for name in ("tiny", "quick", "full"):
         m = modes[name]
-        cpu = "all 8" if len(m["cpu"]) == 8 else ", ".join(m["cpu"])
-        gpu = "all 5" if len(m["gpu"]) == 5 else ", ".join(m["gpu"])
+        sel = m["selection"]
         mrows.append([f"`--{name}`", f"{m['size']}²", m["angles"], m["repeats"], ", ".join(m["scenes"]),
-                      gpu, cpu, "yes" if m["embree"] else "no", f"{m['heat_size']}²",
+                      sel["gpu"], sel["cpu"], "yes" if m["embree"] else "no", f"{m['heat_size']}²",
                       m["out"] or "(--out required)"])
     L.append(md_table(["mode", "size", "-n (Cows, Bunny)", "-m", "scenes", "GPU structures", "CPU structures",
                        "Embree", "heat maps", "default output"], mrows))
     L.append("")
-    L.append("Per scene (thesis 10.2; `--grid-multiplier`, `--kd-depth`, `--bounces` override them): `-d` restart "
-             "applies to GPU kd-restart and CPU kd-tree and kd-pbrt, `-d` backtrack to GPU kd-backtrack, `-g` to the "
-             "grids.")
+    L.append("Structures from `passtrace --list --json`: *all* every one the renderer implements, *numbered* those "
+             "the thesis numbers (Table 4), in its order.")
+    L.append("")
+    L.append("Per scene (thesis 10.2; `--grid-multiplier`, `--kd-depth`, `--bounces` override them): `-d` backtrack "
+             "applies to kd-backtrack, `-d` restart to the other kd structures (`kd-*`), `-g` to the grids "
+             "(`grid*`); no other structure is given either flag.")
     L.append("")
     prow = []
     for s in scenes:
@@ -393,8 +396,8 @@ def write_report(out, results, modes, scene_defaults, plots):
     # All runs
     L.append("## All runs")
     L.append("")
-    L.append(f"Measured values as passtrace wrote them (frame ms at {size}x{size}); `results.csv` and "
-             "`results.json` hold the same and more.")
+    L.append(f"Measured values as passtrace wrote them (frame ms at {size}x{size}); `results.csv` holds the "
+             "same and more (and `results.json`, not kept in git, everything).")
     L.append("")
     rows = []
     for run in runs:
@@ -434,7 +437,7 @@ def write_report(out, results, modes, scene_defaults, plots):
     L.append("")
     L.append("The suite: `" + results["command"] + "` (from the repository root). `--force` reruns finished runs; "
              "`--report-only` rewrites this report from them. Each passtrace run (`RUN.json` is the run's "
-             "`--json` file, kept in `runs/`):")
+             "`--json` file, kept in `runs/` on the machine that ran it):")
     L.append("")
     L.append("```")
     for run in list(runs) + list(results.get("heatmaps", [])):

@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
-"""Plumbing test of the benchmark suite (scripts/bench.py): a --tiny run writes
-well-formed results, and a second run skips what finished. No timing is asserted.
+"""Plumbing test of the benchmark suite (scripts/bench.py): the modes' structure
+lists follow `passtrace --list --json`, a --tiny run writes well-formed results
+with no absolute paths, a second run skips what finished, and --report-only
+rewrites the report from runs/ (and refuses without them). No timing is asserted.
 
     python3 tests/bench_test.py --binary build/passtrace
 """
@@ -31,8 +33,8 @@ def check(condition, what):
     return condition
 
 
-def run_bench(binary, out):
-    cmd = [sys.executable, str(BENCH), "--tiny", "--out", str(out), "--binary", str(binary)]
+def run_bench(binary, out, *extra):
+    cmd = [sys.executable, str(BENCH), "--tiny", "--out", str(out), "--binary", str(binary), *extra]
     start = time.monotonic()
     proc = subprocess.run(cmd, capture_output=True, text=True, timeout=280)
     return proc, time.monotonic() - start
@@ -43,12 +45,33 @@ def main():
     parser.add_argument("--binary", default=str(REPO / "build" / "passtrace"))
     args = parser.parse_args()
 
-    import bench  # the tiny matrix, from the script itself
-    tiny = bench.MODES["tiny"]
-    expected = {(s, r, st) for s in tiny["scenes"]
-                for r, names in (("gpu", tiny["gpu"]), ("cpu", tiny["cpu"]),
-                                 ("embree", ["embree"] if tiny["embree"] else []))
-                for st in names}
+    import bench  # the modes, from the script itself
+    import passtrace_registry
+    registry = passtrace_registry.load(args.binary)
+    modes = bench.resolve_modes(registry)
+    implementing = {r: [a["name"] for a in registry["accelerators"] if r in a["renderers"]] for r in bench.RENDERERS}
+    for name in ("quick", "full"):
+        for r in ("gpu", "embree"):
+            check(sorted(modes[name][r]) == sorted(implementing[r]),
+                  f"--{name} runs every {r} structure of the registry ({modes[name][r]})")
+    check(sorted(modes["full"]["cpu"]) == sorted(implementing["cpu"]),
+          f"--full runs every cpu structure of the registry ({modes['full']['cpu']})")
+    numbered = passtrace_registry.structures(registry, "cpu", numbered_only=True)
+    check(modes["quick"]["cpu"] == numbered and set(numbered) <= set(modes["full"]["cpu"]),
+          f"--quick runs the numbered cpu structures in number order ({modes['quick']['cpu']})")
+    check(modes["full"]["cpu"][:len(numbered)] == numbered, "--full lists the numbered cpu structures first")
+    try:
+        passtrace_registry.check_names(registry, "cpu", ["kk-bvh", "no-such-structure"])
+        check(False, "a structure name the registry lacks is an error")
+    except SystemExit:
+        check(True, "a structure name the registry lacks is an error")
+    flags = {n: passtrace_registry.build_flags(n, grid_multiplier=1.5, kd_depth=7)
+             for a in registry["accelerators"] for n in [a["name"]]}
+    check(all(f == [] or (f[0] == "-g") == n.startswith("grid") for n, f in flags.items()),
+          f"-g only for the grids, -d only for the kd-trees ({flags})")
+
+    tiny = modes["tiny"]
+    expected = {(s, r, st) for s in tiny["scenes"] for r in bench.RENDERERS for st in tiny[r]}
 
     with tempfile.TemporaryDirectory(prefix="bench_test_") as tmp:
         out = pathlib.Path(tmp) / "bench"
@@ -111,6 +134,11 @@ def main():
         check("Table 1" in report and "thesis" in report, "REPORT.md has the thesis's Table 1 analogue")
         check("Table 3" in report, "REPORT.md has the Table 3 analogue")
         check("Embree" in report, "REPORT.md has the ratio to Embree")
+        csv_text = (out / "results.csv").read_text() if (out / "results.csv").exists() else ""
+        for name, text in (("REPORT.md", report), ("results.csv", csv_text)):
+            leaks = [p for p in (str(pathlib.Path(tmp).resolve()), str(REPO), "/tmp/", "/work/", "/home/", "/root/")
+                     if p in text]
+            check(not leaks, f"{name} holds no absolute path ({leaks})")
 
         # A second invocation skips the finished runs.
         before = {r["key"]: r.get("finished_at") for r in runs if r.get("status") == "ok"}
@@ -126,6 +154,15 @@ def main():
         after = {r["key"]: r.get("finished_at") for r in again.get("runs", []) if r.get("status") == "ok"}
         check(all(after.get(k) == v for k, v in before.items()), "finished runs are kept, not rerun")
         print(f"first invocation {first_s:.1f} s, second {second_s:.1f} s (informational)")
+
+        # --report-only rewrites the report from runs/, and refuses where there are none.
+        (out / "REPORT.md").unlink()
+        proc3, _ = run_bench(args.binary, out, "--report-only")
+        check(proc3.returncode == 0 and (out / "REPORT.md").exists(), "--report-only rewrites REPORT.md from runs/")
+        empty = pathlib.Path(tmp) / "empty"
+        proc4, _ = run_bench(args.binary, empty, "--report-only")
+        check(proc4.returncode != 0 and not (empty / "REPORT.md").exists(),
+              f"--report-only without runs/ fails and writes no report (exit {proc4.returncode})")
 
     print(f"{passed} passed, {failed} failed")
     return 1 if failed else 0

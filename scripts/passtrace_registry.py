@@ -1,0 +1,77 @@
+"""The structure registry as `passtrace --list --json` prints it, for the scripts.
+
+The JSON is one object: `version`, `renderers` [{name, id}], `accelerators`
+[{name, renderers, number, description}] and `scenes` [{name, number}].
+"""
+import json
+import subprocess
+
+
+def load(binary):
+    """Runs `BINARY --list --json`; exits with one message when it cannot."""
+    try:
+        proc = subprocess.run([str(binary), "--list", "--json"], capture_output=True, text=True, timeout=60)
+    except OSError as e:
+        raise SystemExit(f"{binary} --list --json: {e}")
+    if proc.returncode != 0:
+        last = (proc.stderr.strip().splitlines() or [f"exit status {proc.returncode}"])[-1]
+        raise SystemExit(f"{binary} --list --json failed: {last} (a passtrace from before the structure registry?)")
+    try:
+        registry = json.loads(proc.stdout)
+        ids = {r["name"]: r["id"] for r in registry["renderers"]}
+        missing = [r for r in registry["accelerators"] if not {"name", "renderers", "number"} <= r.keys()]
+        if missing or not ids:
+            raise ValueError("accelerators or renderers incomplete")
+    except (ValueError, KeyError, TypeError, AttributeError) as e:
+        raise SystemExit(f"{binary} --list --json: not the registry's JSON ({e})")
+    return registry
+
+
+def numbers(registry, renderer):
+    """{name: thesis number} of the structures numbered on `renderer`.
+
+    The JSON gives one number per row, but a number belongs to one structure per
+    renderer: on a renderer, the first row (registry order) with a number owns
+    it, and later rows with the same number are selected there by name only
+    (kd-tree owns 2 on the CPU; kd-restart, also 2, owns it on the GPU).
+    """
+    owner = {}
+    for r in registry["accelerators"]:
+        if renderer in r["renderers"] and r["number"] is not None:
+            owner.setdefault(r["number"], r["name"])
+    return {name: n for n, name in owner.items()}
+
+
+def structures(registry, renderer, numbered_only=False):
+    """Names of the structures that `renderer` implements, in the thesis's order:
+    the numbered ones by number, then the others in registry order.
+    numbered_only keeps the numbered ones."""
+    numbered = sorted(numbers(registry, renderer).items(), key=lambda item: item[1])
+    names = [name for name, _ in numbered]
+    if not numbered_only:
+        names += [r["name"] for r in registry["accelerators"] if renderer in r["renderers"] and r["name"] not in names]
+    return names
+
+
+def renderer_id(registry, renderer):
+    """The -r number of a renderer name ('gpu' -> '2')."""
+    return str(next(r["id"] for r in registry["renderers"] if r["name"] == renderer))
+
+
+def check_names(registry, renderer, names):
+    """Exits naming the first of `names` that `renderer` does not implement."""
+    known = structures(registry, renderer)
+    for name in names:
+        if name not in known:
+            raise SystemExit(f"structure {name!r} is not in passtrace's registry for the {renderer} renderer "
+                             f"(it lists {', '.join(known) or 'none'})")
+
+
+def build_flags(structure, grid_multiplier=None, kd_depth=None):
+    """The build flags a structure reads, by family (the JSON lists no parameters):
+    -g for the grids (names starting 'grid'), -d for the kd-trees ('kd-')."""
+    if structure.startswith("grid") and grid_multiplier is not None:
+        return ["-g", f"{grid_multiplier:g}"]
+    if structure.startswith("kd-") and kd_depth is not None:
+        return ["-d", str(kd_depth)]
+    return []
