@@ -12,7 +12,7 @@ namespace passtrace {
 
 // Starts from best = Hit{t = ray.tMax}; with anyHit, stops at the first hit.
 // stats, when given, is added to: one step and one test per triangle.
-// `test` picks the ray/triangle test (accel/triangle_test.h).
+// `test` picks the ray/triangle test (accel/geometry/triangle_test.h).
 Hit intersectBruteForce(std::span<const Triangle> tris, const Ray& ray, bool anyHit, RayStats* stats = nullptr,
                         TriangleTest test = TriangleTest::MollerTrumbore);
 

@@ -2,7 +2,7 @@
 // The one interface the GPU stream renderer traces through: an acceleration
 // structure's data streams and traversal kernel(s), made by a registry row's
 // stream factory (accel/registry.h). Implementations run
-// passes over the ray stream (render/ray_stream_layout.h) until the cull
+// passes over the ray stream (accel/ray_stream_layout.h) until the cull
 // kernel has retired every active ray.
 
 #include <cstdint>

@@ -1,5 +1,5 @@
 // The slab test and the Möller–Trumbore test, operation for operation as in
-// accel/geometry.h. `precise` forbids the compiler from fusing or reordering
+// accel/geometry/geometry.h. `precise` forbids the compiler from fusing or reordering
 // them, so GPU and CPU results agree wherever the driver keeps IEEE order.
 // With WATERTIGHT_TRIANGLES defined (--triangle-test watertight),
 // intersectTriangle runs the watertight test instead.
@@ -29,7 +29,7 @@ bool clipToBox(vec3 origin, vec3 invDir, vec3 lo, vec3 hi, out float tNear, out 
 
 // Does the ray enter [lo, hi] before tBest, and not entirely behind it?
 // Conservative: the exit t is enlarged by 3 ulps of 1 (kRobustExitScale in
-// accel/geometry.h, 1 + 3 * 2^-23) so rounding never loses a box the ray
+// accel/geometry/geometry.h, 1 + 3 * 2^-23) so rounding never loses a box the ray
 // touches at a corner.
 bool intersectsBox(vec3 origin, vec3 invDir, vec3 lo, vec3 hi, float tBest) {
   float tNear, tFar;

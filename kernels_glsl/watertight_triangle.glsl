@@ -1,5 +1,5 @@
 // The watertight ray/triangle test of Woop, Benthin and Wald (JCGT 2013),
-// operation for operation as in accel/watertight_triangle.h (see there for
+// operation for operation as in accel/geometry/watertight_triangle.h (see there for
 // why it never leaks). `precise` forbids fused multiply-adds: a fused edge
 // function would no longer be the exact negation of its neighbour's.
 

@@ -185,7 +185,7 @@ TEST_F(Cli, BadInputsGiveOneLineErrorsAndNoOutput) {
   expectOneLineError(run("-s cornell -r 2 -w 100000" + outs), "--resolution");
   expectOneLineError(run("-s cornell -a 9" + outs), "9");
   expectOneLineError(run("-s cornell -a nosuchaccel" + outs), "nosuchaccel");
-  expectOneLineError(run("-s cornell -r 2 -a 5" + outs), "GPU accelerator");
+  expectOneLineError(run("-s cornell -r 2 -a 5" + outs), "unknown accelerator '5' (valid on the GPU stream renderer");
   expectOneLineError(run("-s cornell -r 2 -a kd-tree" + outs), "kd-tree");
   expectOneLineError(run("-s cornell -r 7" + outs), "-r");
   expectOneLineError(run("-s cornell -r 3 -w 20000 -o " + path("x.png")), "too large");

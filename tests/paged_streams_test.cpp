@@ -121,7 +121,7 @@ TEST_P(PagedTraversal, SameHitsAsBruteForce) {
     const Hit brute = intersectBruteForce(tris, rays[i], false);
     const Hit& h = gpu.hits[i];
     ASSERT_EQ(h.found(), brute.found()) << "ray " << i;
-    if (h.found() && h.id != brute.id) EXPECT_NEAR(h.t, brute.t, 1e-5f * std::max(1.0f, brute.t)) << "ray " << i;
+    if (h.found() && h.id != brute.id) { EXPECT_NEAR(h.t, brute.t, 1e-5f * std::max(1.0f, brute.t)) << "ray " << i; }
     found += brute.found();
   }
   EXPECT_GT(found, rays.size() / 10);

@@ -24,7 +24,7 @@ TEST(Registry, NamesAreUniqueAndEachRowHasItsFactories) {
     EXPECT_EQ(s.runsOn(RendererId::Cpu) || s.runsOn(RendererId::Embree), s.cpu != nullptr) << s.name;
     EXPECT_EQ(s.runsOn(RendererId::Gpu), s.stream != nullptr) << s.name;
     EXPECT_FALSE(s.runsOn(RendererId::OpenGl)) << s.name;
-    if (s.stream) EXPECT_NE(s.mirror, nullptr) << s.name << ": a stream structure needs its kernel's CPU mirror";
+    if (s.stream) { EXPECT_NE(s.mirror, nullptr) << s.name << ": a stream structure needs its kernel's CPU mirror"; }
     EXPECT_EQ(s.number.has_value(), s.numberedOn.bits != 0) << s.name;
   }
 }
@@ -38,7 +38,7 @@ TEST(Registry, ThesisNumbersPerRendererColumn) {
     EXPECT_EQ(resolveStructure(std::to_string(i), RendererId::Cpu).name, cpu[i]);
     EXPECT_EQ(resolveStructure(cpu[i], RendererId::Cpu).name, cpu[i]);
   }
-  for (int i = 0; i < 5; ++i) EXPECT_EQ(resolveStructure(std::to_string(i), RendererId::Gpu).name, gpu[i]);
+  for (int i = 0; i < 5; ++i) { EXPECT_EQ(resolveStructure(std::to_string(i), RendererId::Gpu).name, gpu[i]); }
   EXPECT_THROW(resolveStructure("5", RendererId::Gpu), std::invalid_argument);
   EXPECT_THROW(resolveStructure("8", RendererId::Cpu), std::invalid_argument);
   EXPECT_THROW(resolveStructure("-1", RendererId::Cpu), std::invalid_argument);
@@ -94,15 +94,15 @@ TEST(Registry, UnusedParametersAreThoseTheRowDoesNotRead) {
 TEST(Registry, BuiltStructuresCarryTheRowName) {
   const auto tris = testmesh::uvSphere(6, 8);
   for (const Structure& s : structures()) {
-    if (s.cpu) EXPECT_EQ(makeCpuStructure(s, tris)->stats().name, s.name);
-    if (s.mirror) EXPECT_EQ(makeMirrorStructure(s, tris)->stats().name.substr(0, 4), s.name.substr(0, 4)) << s.name;
+    if (s.cpu) { EXPECT_EQ(makeCpuStructure(s, tris)->stats().name, s.name); }
+    if (s.mirror) { EXPECT_EQ(makeMirrorStructure(s, tris)->stats().name.substr(0, 4), s.name.substr(0, 4)) << s.name; }
   }
 }
 
 TEST(Registry, MemoryModelMeasuredForEveryRendererOfEveryRow) {
   for (const Structure& s : structures()) {
-    if (s.runsOn(RendererId::Cpu) || s.runsOn(RendererId::Embree)) EXPECT_GT(s.memory.cpuBytesPerTriangle, 0) << s.name;
-    if (s.runsOn(RendererId::Gpu)) EXPECT_GT(s.memory.gpuBytesPerTriangle, 0) << s.name;
+    if (s.runsOn(RendererId::Cpu) || s.runsOn(RendererId::Embree)) { EXPECT_GT(s.memory.cpuBytesPerTriangle, 0) << s.name; }
+    if (s.runsOn(RendererId::Gpu)) { EXPECT_GT(s.memory.gpuBytesPerTriangle, 0) << s.name; }
   }
 }
 

@@ -131,7 +131,7 @@ void checkHits(const std::string& renderer, const std::string& accelerator, std:
   // the largest vertex radius (a triangle lies in their convex hull).
   const float lo = d.sphere.minRadius - 1e-3f, hi = d.sphere.maxRadius * (1.0f + 1e-6f);
   const bool gpuMollerTrumbore = renderer == "gpu" && test == TriangleTest::MollerTrumbore;
-  const std::vector<Hit>& reference = referenceHits(test.value_or(TriangleTest::MollerTrumbore));
+  const std::vector<Hit>& reference = referenceHits(test.value_or(TriangleTest::Watertight));
   // Closest hits agree up to rounding; Möller–Trumbore's t is less accurate
   // right at an edge (where the rays aimed at edges go), by up to ~1e-5.
   const float tolerance = test == TriangleTest::Watertight ? 1e-5f : 1e-4f;
@@ -148,7 +148,11 @@ void checkHits(const std::string& renderer, const std::string& accelerator, std:
     if (!(r >= lo && r <= hi) && offSphere++ < 5)
       ADD_FAILURE() << accelerator << ": ray " << i << " hits at distance " << r << " from the centre";
     const Hit& ref = reference[i];
-    if (!gpuMollerTrumbore && ref.found() && std::abs(ref.t - h.t) > tolerance * std::max(1.0f, h.t) &&
+    // Embree: only uniform rays are compared, since where its test lets an
+    // edge-aimed ray through, the jittered (locally non-convex) sphere may
+    // still be hit behind the edge.
+    if (!gpuMollerTrumbore && (test || kind == 0) && ref.found() &&
+        std::abs(ref.t - h.t) > tolerance * std::max(1.0f, h.t) &&
         disagreements++ < 5)
       ADD_FAILURE() << accelerator << ": ray " << i << " t " << h.t << ", the CPU K/K BVH's " << ref.t;
   }

@@ -6,9 +6,18 @@
 // the same hit and count the same steps; the sequential form only drops the
 // call stack (the "partial evaluation" of section 9.4.2).
 //
+// Why a copy and not one source: the kernel resumes across passes (its state
+// packed into RGBA32F surfaces, at most -l steps per pass, the stack-free
+// formulation the thesis needs), the mirror runs each ray to completion; a
+// GLSL-compatible C++ subset shared by both would need macros for texel
+// fetches, `precise` and the pass structure, and hide the very loop a reader
+// compares with the thesis. The copy is held to the kernel instead:
+// tests/gpu_traversal_test.cpp checks, for every registry row with a stream
+// kernel, the same hits and the same step and triangle-test counts per ray.
+//
 // Both start from best = Hit{t = ray.tMax}: hits at or beyond tMax are
 // ignored. With anyHit, traversal stops at the first triangle hit. `test`
-// picks the ray/triangle test (accel/triangle_test.h). Origin and
+// picks the ray/triangle test (accel/geometry/triangle_test.h). Origin and
 // direction are used as given (no normalisation).
 
 #include <span>
@@ -30,7 +39,7 @@ struct EscapeCursor {
 };
 
 // Runs at most maxSteps iterations of algorithm 4 from `cursor`, exactly as
-// one pass of kernels_glsl/bvh_traverse.frag with loop limit maxSteps.
+// one pass of kernels_glsl/bvh/bvh_traverse.frag with loop limit maxSteps.
 // Returns true while the ray still has work.
 bool stepEscapeSequence(const EscapeSequence& seq, const Ray& ray, bool anyHit, EscapeCursor& cursor,
                         uint32_t maxSteps, TriangleTest test = TriangleTest::MollerTrumbore);

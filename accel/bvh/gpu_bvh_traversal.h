@@ -1,6 +1,6 @@
 #pragma once
 // Escape-index BVH traversal on the GPU (thesis 9.4): the sequence as a
-// ConstInputStream and kernels_glsl/bvh_traverse.frag.
+// ConstInputStream and kernels_glsl/bvh/bvh_traverse.frag.
 
 #include "accel/bvh/escape_sequence.h"
 #include "accel/gpu_traversal.h"

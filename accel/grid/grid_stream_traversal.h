@@ -1,9 +1,18 @@
 #pragma once
 // The uniform-grid traversal on the CPU step for step as
-// kernels_glsl/grid_traversal.glsl runs it on the GPU (3D-DDA, one cell visit
-// or one list entry per step), over the same texels (accel/grid_texels.h):
+// kernels_glsl/grid/grid_traversal.glsl runs it on the GPU (3D-DDA, one cell visit
+// or one list entry per step), over the same texels (accel/grid/grid_texels.h):
 // for debugging the kernels, which must find the same hits and count the
 // same steps.
+//
+// Why a copy and not one source: the kernel resumes across passes (its state
+// packed into RGBA32F surfaces, at most -l steps per pass, the stack-free
+// formulation the thesis needs), the mirror runs each ray to completion; a
+// GLSL-compatible C++ subset shared by both would need macros for texel
+// fetches, `precise` and the pass structure, and hide the very loop a reader
+// compares with the thesis. The copy is held to the kernel instead:
+// tests/gpu_traversal_test.cpp checks, for every registry row with a stream
+// kernel, the same hits and the same step and triangle-test counts per ray.
 
 #include <cstdint>
 #include <span>

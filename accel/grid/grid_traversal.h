@@ -33,7 +33,7 @@ inline bool clipRayToBox(const glm::vec3& origin, const glm::vec3& invDir, const
 // drifts. Triangles listed in several cells are tested once per cell (no
 // mailboxing, as on the GPU). stats, when given, is added to: one step per
 // cell visited, one test per triangle test. `test` picks the ray/triangle
-// test (accel/triangle_test.h).
+// test (accel/geometry/triangle_test.h).
 Hit traverseGrid(const UniformGrid& grid, std::span<const Triangle> tris, const Ray& ray, bool anyHit,
                  RayStats* stats = nullptr, TriangleTest test = TriangleTest::MollerTrumbore);
 

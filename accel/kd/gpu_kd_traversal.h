@@ -1,6 +1,6 @@
 #pragma once
 // kd-restart and kd-backtrack on the GPU (thesis 8.5): an initialisation
-// kernel, then kernels_glsl/kd_traverse.frag pass after pass.
+// kernel, then kernels_glsl/kd/kd_traverse.frag pass after pass.
 
 #include <vector>
 

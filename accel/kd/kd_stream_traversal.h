@@ -1,8 +1,17 @@
 #pragma once
 // kd-restart and kd-backtrack (Foley & Sugerman, thesis 8.2-8.5) on the CPU,
-// step for step as kernels_glsl/kd_traversal.glsl runs them on the GPU, over
-// the same texels (accel/kd_texels.h). They exist to debug the kernels: the
+// step for step as kernels_glsl/kd/kd_traversal.glsl runs them on the GPU, over
+// the same texels (accel/kd/kd_texels.h). They exist to debug the kernels: the
 // GPU and the CPU must find the same hits and count the same steps.
+//
+// Why a copy and not one source: the kernel resumes across passes (its state
+// packed into RGBA32F surfaces, at most -l steps per pass, the stack-free
+// formulation the thesis needs), the mirror runs each ray to completion; a
+// GLSL-compatible C++ subset shared by both would need macros for texel
+// fetches, `precise` and the pass structure, and hide the very loop a reader
+// compares with the thesis. The copy is held to the kernel instead:
+// tests/gpu_traversal_test.cpp checks, for every registry row with a stream
+// kernel, the same hits and the same step and triangle-test counts per ray.
 
 #include <cstdint>
 #include <span>

@@ -22,7 +22,7 @@
 // Starts from best = Hit{t = ray.tMax}; hits at or beyond tMax are ignored.
 // stats, when given, is added to: one step per node visited (internal or
 // leaf) and one triangle test per reference tested. `test` picks the
-// ray/triangle test (accel/triangle_test.h).
+// ray/triangle test (accel/geometry/triangle_test.h).
 
 #include <span>
 

@@ -69,7 +69,7 @@ Octree buildOctree(std::span<const Triangle> tris, const OctreeConfig& config = 
 // leaf just tested, or at the first hit with anyHit. Starts from
 // best = Hit{t = ray.tMax}. stats: one step per node visited, one test per
 // triangle test (a triangle in several leaves may be tested more than once).
-// `test` picks the ray/triangle test (accel/triangle_test.h).
+// `test` picks the ray/triangle test (accel/geometry/triangle_test.h).
 Hit traverseOctree(const Octree& octree, std::span<const Triangle> tris, const Ray& ray, bool anyHit,
                    RayStats* stats = nullptr, TriangleTest test = TriangleTest::MollerTrumbore);
 

@@ -1,5 +1,5 @@
 // Escape-index BVH traversal and intersection (thesis 9.4, algorithm 4): the
-// tree is stored as its depth-first traversal sequence (accel/escape_sequence.h).
+// tree is stored as its depth-first traversal sequence (accel/bvh/escape_sequence.h).
 // A box is 2 texels (min, packed escape index; max); a triangle 3 texels
 // (v0, -1; v1, packed triangle id; v2). Hitting a box steps into it, missing
 // it jumps to its escape index; the loop stops after uLoopLimit steps and the

@@ -1,7 +1,7 @@
 // Uniform-grid traversal (thesis 7.2-7.4): Amanatides & Woo's 3D-DDA over the
 // cells a ray pierces, testing each cell's reference list. One step at a time
-// so passes can stop anywhere; accel/grid_stream_traversal.cpp runs the same
-// steps on the CPU. Layout: accel/grid_texels.h.
+// so passes can stop anywhere; accel/grid/grid_stream_traversal.cpp runs the same
+// steps on the CPU. Layout: accel/grid/grid_texels.h.
 //
 // A ray's state: its cell, the t at which it crosses the next cell boundary
 // on each axis (tNext), and a mode: VISIT (look up the cell's list) or, >= 0,

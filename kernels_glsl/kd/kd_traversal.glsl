@@ -1,6 +1,6 @@
 // Foley & Sugerman's stackless kd-tree traversals (thesis 8.2-8.5), one step
 // at a time so a pass can stop anywhere and the next resume. The layouts are
-// accel/kd_texels.h; accel/kd_stream_traversal.cpp runs the same steps on
+// accel/kd/kd_texels.h; accel/kd/kd_stream_traversal.cpp runs the same steps on
 // the CPU. Define KD_BACKTRACK for kd-backtrack, else kd-restart.
 //
 // A ray's state: the node it is at, a mode, and its search interval
