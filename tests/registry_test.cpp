@@ -86,8 +86,9 @@ TEST(Registry, UnusedParametersAreThoseTheRowDoesNotRead) {
   const Structure& grid = *findStructure("grid");
   EXPECT_EQ(unusedParams(grid, RendererId::Gpu, {P::GridKernels, P::LoopLimit, P::PageTexels}), std::vector<P>{});
   EXPECT_EQ(unusedParams(grid, RendererId::Cpu, {P::GridKernels, P::GridMultiplier}), std::vector<P>{P::GridKernels});
-  if (const Structure* embree = findStructure("embree"))
+  if (const Structure* embree = findStructure("embree")) {
     EXPECT_EQ(unusedParams(*embree, RendererId::Embree, {P::TriangleTest}), std::vector<P>{P::TriangleTest});
+  }
 }
 
 // Every row's CPU structure reports the row's name (the JSON's "accelerator").
