@@ -15,7 +15,7 @@
 
 namespace passtrace {
 
-// Triangle counts (pinned by tests/cows_scene_test.cpp).
+// Triangle counts (pinned by tests/unit/cows_scene_test.cpp).
 // 4 planes + tree (16 trunk + 1092 * 12 branch + 729 * 8 leaf triangles) +
 // 3 meshes (3,945 each from the bunny, 1,520 each for the fallback blob).
 inline constexpr std::size_t kCowsTriangles = 30791;         // with the bunny

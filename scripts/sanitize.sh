@@ -35,14 +35,13 @@ cmake --build "$build" -j"$(nproc)"
 # It comes before the ASan runtime in the load order, which ASan allows here.
 cc -shared -fPIC -O1 -o "$build/libkeep_libraries_loaded.so" tests/sanitizer/keep_libraries_loaded.c
 export ASAN_OPTIONS="$ASAN_OPTIONS:verify_asan_link_order=0"
-# Every test except the end-to-end matrices that repeat, with many more
-# processes and larger images, code paths the rest already covers (each
-# structure through the CLI on several scenes, the BART scenes, the large
-# build-time runs, the benchmark plumbing); the watertightness test runs with
-# 12,000 rays per structure instead of 60,000. Sanitized code runs about 5x
-# slower, and the excluded tests take 8 of the suite's 12 minutes unsanitized.
+# Every test except the `slow` label (tests/slow/: each structure through the
+# CLI on several scenes, the BART scenes, the large builds, the benchmark
+# plumbing), code paths the rest already covers with many more processes and
+# larger inputs; the watertightness test runs 12,000 rays per structure instead
+# of 60,000. Sanitized code runs about 5x slower.
 # PASSTRACE_SANITIZE_ALL=1 runs everything.
-exclude='Cli\.HitBuffersOfEveryAccelerator|BartScenes|DegenerateCli\.EdgeCaseScenes|BenchPlumbing|LargeMeshesBuild|LargeSoupBuilds'
-if [ "${PASSTRACE_SANITIZE_ALL:-0}" = 1 ]; then exclude='^$'; fi
+select=(-LE slow)
+if [ "${PASSTRACE_SANITIZE_ALL:-0}" = 1 ]; then select=(); fi
 LD_PRELOAD="$build/libkeep_libraries_loaded.so" PASSTRACE_WATERTIGHT_RAYS="${PASSTRACE_WATERTIGHT_RAYS:-12000}" \
-  ctest --test-dir "$build" --output-on-failure -j2 -E "$exclude"
+  ctest --test-dir "$build" --output-on-failure -j2 "${select[@]}"

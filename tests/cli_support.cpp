@@ -25,8 +25,9 @@ std::string slurp(const fs::path& p) {
 
 void CliTest::SetUp() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  dir_ = fs::temp_directory_path() /
-         ("passtrace_cli_" + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" + info->name());
+  std::string name = std::string(info->test_suite_name()) + "_" + info->name();
+  std::replace(name.begin(), name.end(), '/', '_');  // parametrised tests: one directory, not a tree
+  dir_ = fs::temp_directory_path() / ("passtrace_cli_" + std::to_string(::getpid()) + "_" + name);
   fs::remove_all(dir_);
   fs::create_directories(dir_);
 }

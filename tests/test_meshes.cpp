@@ -141,6 +141,42 @@ Aabb boundsOf(std::span<const Triangle> tris) {
   return b;
 }
 
+// (2 * cbrt(64) = 8 cells along each axis.)
+std::vector<Triangle> cellBoundaryMesh() {
+  std::vector<Triangle> tris;
+  auto square = [&](int axis, float p, float a0, float a1, float b0, float b1) {
+    auto at = [&](float a, float b) {
+      glm::vec3 v;
+      v[axis] = p;
+      v[(axis + 1) % 3] = a;
+      v[(axis + 2) % 3] = b;
+      return v;
+    };
+    tris.push_back({at(a0, b0), at(a1, b0), at(a1, b1)});
+    tris.push_back({at(a0, b0), at(a1, b1), at(a0, b1)});
+  };
+  for (int axis = 0; axis < 3; ++axis)
+    for (const float p : {0.0f, 3.0f, 5.0f, 8.0f}) square(axis, p, float(1 + axis), float(4 + axis), 2.0f, 6.0f);
+  // 24 so far; four large ones.
+  tris.push_back({glm::vec3(0, 0, 0), glm::vec3(8, 0, 8), glm::vec3(0, 8, 8)});
+  tris.push_back({glm::vec3(8, 8, 0), glm::vec3(0, 8, 0), glm::vec3(8, 0, 8)});
+  tris.push_back({glm::vec3(0, 0, 4), glm::vec3(8, 0, 4), glm::vec3(8, 8, 4)});  // in a cell plane
+  tris.push_back({glm::vec3(1, 7, 1), glm::vec3(7, 1, 7), glm::vec3(4, 4, 1)});
+  std::mt19937_64 rng(17);
+  auto coord = [&] { return float(rng() % 9); };
+  while (tris.size() < 64) {
+    const glm::vec3 v0(coord(), coord(), coord());
+    glm::vec3 v1 = v0, v2 = v0;
+    const int a = int(rng() % 3), b = (a + 1 + int(rng() % 2)) % 3;
+    v1[a] = coord();
+    v2[b] = coord();
+    if (rng() % 2) v2[a] = v1[a];  // sometimes a right triangle in a cell plane
+    if (glm::cross(v1 - v0, v2 - v0) == glm::vec3(0.0f)) continue;
+    tris.push_back({v0, v1, v2});
+  }
+  return tris;
+}
+
 std::vector<NamedMesh> standardMeshes() {
   std::vector<NamedMesh> meshes;
   meshes.push_back({"sphere", uvSphere(24, 32)});
@@ -151,6 +187,12 @@ std::vector<NamedMesh> standardMeshes() {
   meshes.push_back({"single", singleTriangle()});
   meshes.push_back({"coincident", coincidentCentroids(300, 13)});
   return meshes;
+}
+
+std::vector<NamedMesh> standardMeshesAndCellBoundaries() {
+  std::vector<NamedMesh> all = standardMeshes();
+  all.push_back({"cellBoundaries", cellBoundaryMesh()});
+  return all;
 }
 
 std::vector<Ray> makeRays(RayKind kind, const Aabb& bounds, size_t count, uint64_t seed, bool finiteTMax) {

@@ -47,6 +47,12 @@ std::vector<Triangle> pointMesh(size_t count, glm::vec3 point = glm::vec3(0.5f))
 // integer too), so no axis can separate them.
 std::vector<Triangle> coincidentCentroids(size_t count, uint64_t seed, glm::vec3 center = glm::vec3(2.0f));
 
+// 64 triangles in [0, 8]^3 whose uniform grid is exactly 8 x 8 x 8 cells of
+// edge 1: squares lying in cell planes with corners on cell corners,
+// triangles spanning the whole box, and triangles with integer vertices whose
+// edges run along cell edges and faces.
+std::vector<Triangle> cellBoundaryMesh();
+
 Aabb boundsOf(std::span<const Triangle> tris);
 
 // A named mesh, for parameterised tests.
@@ -61,6 +67,8 @@ inline void PrintTo(const NamedMesh& mesh, std::ostream* os) {
 // The standard set: sphere, soup, flat grids (z and x normal), degenerate
 // mix, single triangle, coincident centroids.
 std::vector<NamedMesh> standardMeshes();
+// The standard set and cellBoundaries (cellBoundaryMesh), for the grid's sake.
+std::vector<NamedMesh> standardMeshesAndCellBoundaries();
 
 enum class RayKind {
   OutsideIn,     // from a shell around the bounds, aimed at random points inside

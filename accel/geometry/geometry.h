@@ -107,7 +107,7 @@ inline bool clipToBox(const glm::vec3& origin, const glm::vec3& invDir, const Aa
 // is enlarged by 2 gamma(3) = 3 ulps of 1 before comparing. Without it a ray
 // that passes exactly through a box corner, such as a ray aimed at a mesh
 // vertex, can miss every box around the vertex and slip through a closed
-// mesh (tests/watertight_test.cpp found this).
+// mesh (tests/gl/watertight_test.cpp found this).
 inline constexpr float kRobustExitScale = 1.0f + 3.0f * 0x1p-23f;
 
 inline bool intersectsBox(const glm::vec3& origin, const glm::vec3& invDir, const Aabb& box, float tBest) {

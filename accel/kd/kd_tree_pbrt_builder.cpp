@@ -136,7 +136,7 @@ KdTree buildKdTreePbrt(std::span<const Triangle> tris, const KdBuildConfig& conf
     // pbrt's classification, except that a triangle whose bounds touch the
     // plane (a vertex on it) goes to both sides: a ray through that vertex
     // may be rounded into either child, and with the triangle on one side
-    // only it slipped through closed meshes (tests/watertight_test.cpp).
+    // only it slipped through closed meshes (tests/gl/watertight_test.cpp).
     for (size_t i = 0; i < 2 * n; ++i)
       if (edges[i].start && (i < bestOffset || edges[i].t == tSplit)) below.prims.push_back(edges[i].prim);
     for (size_t i = 0; i < 2 * n; ++i)

@@ -1,7 +1,7 @@
 #pragma once
 // What every loader promises about the Scene it returns and about the error
 // it throws instead, checked by the fuzz targets (tests/fuzz/) and by the
-// regression test over their findings (tests/fuzz_regressions_test.cpp).
+// regression test over their findings (tests/unit/fuzz_regressions_test.cpp).
 
 #include <cmath>
 #include <cstddef>

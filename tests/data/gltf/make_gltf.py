@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the small glTF 2.0 files of tests/gltf_loader_test.cpp (run from
+"""Writes the small glTF 2.0 files of tests/unit/gltf_loader_test.cpp (run from
 this directory; the outputs are committed, so this is documentation)."""
 import base64, json, struct
 

@@ -17,6 +17,7 @@
 #include "scenes/scene_error.h"
 #include "scenes/scene_registry.h"
 #include "scenes/tessellate.h"
+#include "tests/bart_dir.h"
 
 namespace passtrace {
 namespace {
@@ -51,15 +52,7 @@ void expectError(const std::string& name, std::size_t line, const std::string& p
   EXPECT_NE(message.find(part), std::string::npos) << "\"" << message << "\" lacks \"" << part << "\"";
 }
 
-// The BART directory the way SceneOptions finds it, plus the checkout's
-// ../shared for test binaries built outside the source tree.
-fs::path bartDir() {
-  fs::path dir = defaultBartDir();
-  std::error_code ec;
-  if (!dir.empty() && fs::is_directory(dir, ec)) return dir;
-  const fs::path fromSource = (fs::path(PASSTRACE_TEST_DATA) / ".." / ".." / ".." / "shared" / "scenes" / "bart").lexically_normal();
-  return fs::is_directory(fromSource, ec) ? fromSource : fs::path();
-}
+using test::bartDir;
 
 // --- NFF primitives --------------------------------------------------------------
 

@@ -1,24 +1,25 @@
 // Scenes beyond one texture: data spread over several textures
-// (ConstInputStream pages) — the GLSL fetch against the C++ addressing, every
-// GPU structure on paged data against brute force, whole renders that give
-// the same bits with and without paging — the procedural scene of any size,
-// and the refusal of scenes too large for the machine's memory.
+// (ConstInputStream pages) — the GLSL fetch against the C++ addressing, and
+// every GPU structure of the registry on paged data against brute force.
+// Whole renders with paged data: tests/e2e/paged_cli_test.cpp.
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include "accel/registry.h"
+#include <bit>
+#include <memory>
+#include <string>
+#include <vector>
 
 #include "accel/brute_force.h"
 #include "accel/gpu_traversal.h"
-#include "scenes/scene_registry.h"
-#include "scenes/sphere_field.h"
+#include "accel/registry.h"
+#include "scenes/scene.h"
 #include "stream/const_input_stream.h"
 #include "stream/gl_error.h"
 #include "stream/inout_stream.h"
 #include "stream/stream_kernel.h"
 #include "stream/texel_address.h"
-#include "tests/cli_support.h"
 #include "tests/gl_test_support.h"
 #include "tests/test_meshes.h"
 
@@ -52,7 +53,6 @@ TEST_F(GlTest, LargestTextureIsWhatTheGlAccepts) {
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &side);
   EXPECT_GE(log2, 20u);  // every GL 4.5 allows 1024 x 1024 RGBA32F
   EXPECT_LE(uint64_t(1) << log2, uint64_t(side) * uint64_t(side));
-  std::cout << "largest page: 2^" << log2 << " RGBA32F texels (" << ((uint64_t(16) << log2) >> 20) << " MiB)\n";
 }
 
 TEST_F(GlTest, PagedFetchMatchesCppAddressing) {
@@ -133,60 +133,6 @@ INSTANTIATE_TEST_SUITE_P(AllStructures, PagedTraversal, ::testing::ValuesIn(stre
                            std::replace(name.begin(), name.end(), '-', '_');
                            return name;
                          });
-
-// Whole frames (three bounces on the Cornell box, whose mirror and shadows
-// read the shading data at every bounce) give the same bits with 64-texel
-// pages and 3 steps per pass as with one texture per stream and 20 steps.
-using Cli = test::CliTest;
-
-TEST_F(Cli, PagedDataRendersTheSameBits) {
-  for (const std::string accel : {"kk-bvh", "kd-restart", "kd-backtrack", "grid", "grid --grid-kernels split"}) {
-    SCOPED_TRACE(accel);
-    const std::string common = "-s cornell -r 2 -w 40 -b 3 -a " + accel;
-    ASSERT_EQ(run(common + " -o " + path("one.exr") + " --hits " + path("one-hits.exr")).status, 0);
-    const test::RunResult paged =
-        run(common + " --page-texels 64 -l 3 -o " + path("paged.exr") + " --hits " + path("paged-hits.exr"));
-    ASSERT_EQ(paged.status, 0) << paged.err;
-    EXPECT_EQ(test::slurp(path("one.exr")), test::slurp(path("paged.exr")));
-    EXPECT_EQ(test::slurp(path("one-hits.exr")), test::slurp(path("paged-hits.exr")));
-  }
-}
-
-// The procedural scene of any size: exactly the promised count, at least the
-// requested one, the same triangles on every call.
-TEST(SphereField, CountIsPredictedAndDeterministic) {
-  for (uint64_t requested : {1000ull, 123456ull}) {
-    const Scene a = makeSphereField(requested), b = makeSphereField(requested);
-    EXPECT_EQ(a.triangles.size(), sphereFieldTriangles(requested));
-    EXPECT_GE(a.triangles.size(), requested);
-    EXPECT_LT(a.triangles.size(), requested * 5 / 4 + 2400);  // about the next finer tessellation
-    ASSERT_EQ(a.materialIds.size(), a.triangles.size());
-    for (size_t i = 0; i < a.triangles.size(); i += 997) {
-      EXPECT_EQ(a.triangles[i].v0, b.triangles[i].v0);
-      EXPECT_EQ(a.triangles[i].v2, b.triangles[i].v2);
-    }
-  }
-}
-
-// A GPU render of the procedural scene with its data in several textures
-// against brute force, through the command line.
-TEST_F(Cli, PagedSpheresHitsEqualBruteForce) {
-  SceneOptions options;
-  options.triangles = 20000;
-  const Scene scene = loadScene("spheres", options);
-  const test::RunResult r =
-      run("-s spheres --triangles 20000 -r 2 -a 0 -b 1 -w 40 --page-texels 32768 --hits " + path("h.exr"));
-  ASSERT_EQ(r.status, 0) << r.err;
-  test::expectHitsMatchBruteForce(path("h.exr"), scene, 40);
-}
-
-// A scene that cannot fit is refused before anything is built.
-TEST_F(Cli, SceneTooLargeForMemoryIsRefusedBeforeBuilding) {
-  const std::string outs = " -o " + path("x.png") + " --hits " + path("x.exr");
-  expectOneLineError(run("-s spheres --triangles 400000000 -r 2 -a grid" + outs), "nothing was built");
-  expectOneLineError(run("-s spheres --triangles 400000000 -r 1 -a kd-pbrt" + outs), "GiB available");
-  expectOneLineError(run("-s spheres --triangles 999" + outs), "--triangles");
-}
 
 }  // namespace
 }  // namespace passtrace

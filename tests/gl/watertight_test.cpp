@@ -1,11 +1,8 @@
 // Watertightness, after pbrt-v4's Triangle.Watertight test: rays from inside
 // a closed, finely tessellated sphere with jittered vertices must all hit it.
-// A ray that hits nothing is a leak. Every accelerator is measured on both
-// renderers with both triangle tests, and prints one table line:
-//
-//   renderer  accelerator  test  rays  leaks (uniform / at edges / at vertices)  rate
-//
-// What is asserted:
+// A ray that hits nothing is a leak. Every structure of the registry runs on
+// both renderers with both triangle tests (the leak rates themselves are
+// printed by tests/measure/watertight_leaks.cpp). What is asserted:
 //  - watertight test: no leaks at all, on every structure;
 //  - Möller–Trumbore: every leak is the triangle test's, not the traversal's
 //    (brute force with the same test misses that ray too), and the leak rate
@@ -14,11 +11,9 @@
 //    jittered radii) and agrees in t with the CPU K/K BVH's hit.
 //
 // PASSTRACE_WATERTIGHT_RAYS sets the rays per structure (default: a CI-sized
-// count); the closing measurement used several million.
+// count).
 
 #include <algorithm>
-#include <cinttypes>
-#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <memory>
@@ -112,7 +107,7 @@ const std::vector<Hit>& referenceHits(TriangleTest test) {
 
 const char* kKindNames[testmesh::kInsideRayKinds] = {"uniform", "edge", "vertex"};
 
-// Counts leaks and checks one structure's hits; prints its line. `test` is
+// Counts leaks and checks one structure's hits. `test` is
 // the triangle test it ran with, or nullopt for Embree's own: then leaks are
 // only reported. On llvmpipe the GPU's Möller–Trumbore is not bit-identical
 // to the CPU's right at edges (the watertight test is), so a GPU structure
@@ -182,10 +177,6 @@ void checkHits(const std::string& renderer, const std::string& accelerator, std:
     }
   }
   const size_t total = leaks[0] + leaks[1] + leaks[2];
-  std::printf("[leaks] %-4s %-17s %-15s rays %9zu  leaks %7zu (uniform %zu, edge %zu, vertex %zu)  rate %.3g\n",
-              renderer.c_str(), accelerator.c_str(), test ? triangleTestName(*test).c_str() : "embree's own", rays.size(), total, leaks[0],
-              leaks[1], leaks[2], double(total) / double(rays.size()));
-  std::fflush(stdout);
   EXPECT_EQ(offSphere, 0u) << accelerator;
   EXPECT_EQ(disagreements, 0u) << accelerator;
   if (!test) {
