@@ -258,6 +258,7 @@ INSTANTIATE_TEST_SUITE_P(BothTests, WatertightGpu,
 // Embree has its own triangle test (the option does not reach it): its leaks
 // are reported, not asserted.
 TEST(WatertightEmbree, Baseline) {
+  if (!PASSTRACE_HAVE_EMBREE) GTEST_SKIP() << "passtrace was built without Embree";
   const auto accelerator = makeEmbreeAccelerator(data().sphere.tris);
   checkHits("cpu", "embree", std::nullopt, traceCpu(*accelerator));
 }
