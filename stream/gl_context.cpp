@@ -5,7 +5,9 @@
 #include "stream/egl_platform.h"
 #include "stream/gl.h"
 #include "stream/gl_error.h"
+#if PASSTRACE_HAVE_OSMESA
 #include "stream/osmesa_platform.h"
+#endif
 
 namespace passtrace {
 
@@ -20,10 +22,17 @@ std::unique_ptr<GlContext> GlContext::create(GlBackend backend, std::string* not
   PlatformContext platform;
   std::string eglError, osmesaError;
   bool ok = false;
+#if PASSTRACE_HAVE_OSMESA
   if (backend != GlBackend::OsMesa) ok = createEglContext(platform, eglError);
   if (!ok && backend == GlBackend::Auto && notices)
     *notices += "no EGL context (" + eglError + "); falling back to OSMesa\n";
   if (!ok && backend != GlBackend::Egl) ok = createOsMesaContext(platform, osmesaError);
+#else
+  // Built without OSMesa (its development files were missing): EGL only.
+  if (backend == GlBackend::OsMesa)
+    throw std::runtime_error("the osmesa GL backend is not available: passtrace was built without OSMesa");
+  ok = createEglContext(platform, eglError);
+#endif
   if (!ok) {
     std::string why = eglError;
     if (!osmesaError.empty()) why += (why.empty() ? "" : "; ") + osmesaError;

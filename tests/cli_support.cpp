@@ -82,7 +82,9 @@ void expectHitsMatchBruteForce(const std::string& file, const Scene& scene, int 
     }
   EXPECT_LE(mismatches, allowedMismatches);
   EXPECT_GE(found, minFoundFraction * w * h);
-  if (minFoundFraction > 0) EXPECT_GT(found, 0);
+  if (minFoundFraction > 0) {
+    EXPECT_GT(found, 0);
+  }
 }
 
 }  // namespace passtrace::test

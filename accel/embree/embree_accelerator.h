@@ -36,7 +36,8 @@
 //
 // Errors reported by Embree during construction (including a device that
 // cannot be created) throw std::runtime_error with a one-line message
-// starting "embree: ".
+// starting "embree: ". In a build without Embree (PASSTRACE_HAVE_EMBREE 0)
+// makeEmbreeAccelerator() always throws std::runtime_error.
 
 #include <memory>
 #include <span>

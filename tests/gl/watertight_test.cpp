@@ -260,6 +260,7 @@ INSTANTIATE_TEST_SUITE_P(BothTests, WatertightGpu,
 // must lie on the sphere and agree with the CPU K/K BVH's, and its leaks stay
 // within its own test's bounds.
 TEST(WatertightEmbree, Baseline) {
+  if (!PASSTRACE_HAVE_EMBREE) GTEST_SKIP() << "passtrace was built without Embree";
   const auto accelerator = makeEmbreeAccelerator(data().sphere.tris);
   checkHits("cpu", "embree", std::nullopt, traceCpu(*accelerator));
 }

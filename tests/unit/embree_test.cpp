@@ -101,7 +101,21 @@ Agreement compare(const CpuAccelerator& accel, std::span<const Triangle> tris, s
   return a;
 }
 
-class EmbreeMeshTest : public ::testing::TestWithParam<NamedMesh> {};
+// Built without Embree (PASSTRACE_HAVE_EMBREE 0) makeEmbreeAccelerator()
+// throws: every test here is skipped.
+class EmbreeMeshTest : public ::testing::TestWithParam<NamedMesh> {
+ protected:
+  void SetUp() override {
+    if (!PASSTRACE_HAVE_EMBREE) GTEST_SKIP() << "passtrace was built without Embree";
+  }
+};
+
+class Embree : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!PASSTRACE_HAVE_EMBREE) GTEST_SKIP() << "passtrace was built without Embree";
+  }
+};
 
 TEST_P(EmbreeMeshTest, AgreesWithBruteForce) {
   const auto& tris = GetParam().tris;
@@ -155,7 +169,7 @@ TEST_P(EmbreeMeshTest, ThreadsGiveTheSequentialResults) {
 std::string meshName(const ::testing::TestParamInfo<NamedMesh>& info) { return info.param.name; }
 INSTANTIATE_TEST_SUITE_P(Meshes, EmbreeMeshTest, ::testing::ValuesIn(testmesh::standardMeshes()), meshName);
 
-TEST(Embree, EmptySceneHitsNothing) {
+TEST_F(Embree, EmptySceneHitsNothing) {
   const std::vector<Triangle> none;
   const auto accel = makeEmbreeAccelerator(none);
   const std::vector<Ray> rays = testmesh::rayMix(Aabb{glm::vec3(-1.0f), glm::vec3(1.0f)}, 50, 5);
@@ -170,7 +184,7 @@ TEST(Embree, EmptySceneHitsNothing) {
   EXPECT_EQ(s.references, 0u);
 }
 
-TEST(Embree, Stats) {
+TEST_F(Embree, Stats) {
   const std::vector<Triangle> tris = testmesh::uvSphere(16, 24);
   const auto accel = makeEmbreeAccelerator(tris);
   EXPECT_EQ(accel->name(), "embree");
@@ -186,7 +200,7 @@ TEST(Embree, Stats) {
 }
 
 // Passtrace's rule is 0 < t < tMax; Embree on its own accepts t == tfar.
-TEST(Embree, TMaxIsExclusiveAndNonPositiveTMaxMisses) {
+TEST_F(Embree, TMaxIsExclusiveAndNonPositiveTMaxMisses) {
   const std::vector<Triangle> tris = testmesh::singleTriangle();
   const auto accel = makeEmbreeAccelerator(tris);
   Ray ray{glm::vec3(-0.5f, -0.5f, 1.0f), glm::vec3(0.0f, 0.0f, -1.0f), kInfinity};
@@ -218,7 +232,7 @@ TEST(Embree, TMaxIsExclusiveAndNonPositiveTMaxMisses) {
   EXPECT_FALSE(intersectBruteForce(tris, onPlane, false).found());
 }
 
-TEST(Embree, DegenerateInputDoesNotCrash) {
+TEST_F(Embree, DegenerateInputDoesNotCrash) {
   const std::vector<Triangle> points = testmesh::pointMesh(10);
   const auto accel = makeEmbreeAccelerator(points);
   const std::vector<Ray> rays = testmesh::rayMix(testmesh::boundsOf(points), 50, 9);
@@ -235,7 +249,7 @@ TEST(Embree, DegenerateInputDoesNotCrash) {
 
 // The Stanford bunny, when glmark2-data is installed: a spot check against
 // brute force.
-TEST(Embree, BunnyAgreesWithBruteForce) {
+TEST_F(Embree, BunnyAgreesWithBruteForce) {
   Scene scene;
   try {
     scene = loadScene("bunny");
