@@ -9,12 +9,13 @@ packages=(
   cmake g++ make pkg-config
   python3-glad                                  # generates the GL 4.5 core loader at build time
   libegl-dev libegl-mesa0 libgl1-mesa-dri       # headless EGL and Mesa's drivers (llvmpipe)
-  libosmesa6-dev                                # the OSMesa backend
-  libglm-dev libcli11-dev nlohmann-json3-dev libgtest-dev
+  libosmesa6-dev                                # the OSMesa backend (optional)
+  libglm-dev libcli11-dev nlohmann-json3-dev libgtest-dev   # GoogleTest: the tests (optional)
   libopenimageio-dev                            # image and OpenEXR output
   libtinyobjloader-dev libtinygltf-dev          # scene loaders
+  libtbb-dev                                    # oneTBB: the CPU renderer's threads
   glmark2-data                                  # the Stanford bunny (bunny.obj)
-  libembree-dev                                 # Intel Embree 3, the CPU baseline (-r 3)
+  libembree-dev                                 # Intel Embree 3, the CPU baseline (-r 3; optional)
   python3 python3-matplotlib                    # the benchmark report and its plots
 )
 missing=()
