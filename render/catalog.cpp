@@ -43,9 +43,13 @@ nlohmann::json catalogJson() {
 
 std::string catalogText() {
   std::string text = "Renderers (-r):\n";
-  for (RendererId r : kRenderers)
+  for (RendererId r : kRenderers) {
+    // A ray tracer with no structure was left out of this build (Embree without libembree-dev).
+    const bool built = r == RendererId::OpenGl ||
+                       std::any_of(structures().begin(), structures().end(), [r](const Structure& s) { return s.runsOn(r); });
     text += "  " + std::to_string(int(r)) + " " + std::string(rendererName(r)) + ": " +
-            std::string(rendererTitle(r)) + "\n";
+            std::string(rendererTitle(r)) + (built ? "" : " (not in this build)") + "\n";
+  }
   size_t width = 0;
   for (const Structure& s : structures()) width = std::max(width, s.name.size());
   text += "Structures (-a NAME, or the thesis number in the renderer's column):\n";

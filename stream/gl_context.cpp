@@ -29,6 +29,7 @@ std::unique_ptr<GlContext> GlContext::create(GlBackend backend, std::string* not
   if (!ok && backend != GlBackend::Egl) ok = createOsMesaContext(platform, osmesaError);
 #else
   // Built without OSMesa (its development files were missing): EGL only.
+  (void)notices;  // no fallback to announce
   if (backend == GlBackend::OsMesa)
     throw std::runtime_error("the osmesa GL backend is not available: passtrace was built without OSMesa");
   ok = createEglContext(platform, eglError);
