@@ -1,6 +1,7 @@
 #include "accel/registry.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <stdexcept>
 
 #include "accel/bvh/bvh_structures.h"
@@ -123,6 +124,29 @@ std::string_view buildParamFlag(BuildParam param) {
     case P::LoopLimit: return "-l/--loop-limit";
     case P::PageTexels: return "--page-texels";
     case P::TriangleTest: return "--triangle-test";
+  }
+  return "?";
+}
+
+std::string buildParamDefault(BuildParam param) {
+  const GpuTraversalConfig gpu;
+  const AccelBuildConfig& cpu = gpu.build;
+  // Shortest decimal that reads back as the value: "1", "0.5".
+  const auto number = [](double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return std::string(buf);
+  };
+  switch (param) {
+    case P::SwapChildren: return number(2.0 * cpu.kayKajiya.swapProbability);  // -c is tracy's: twice the probability
+    case P::GsTries: return number(cpu.gsTries);
+    case P::GridMultiplier: return number(cpu.gridMultiplier);
+    case P::KdMinElements: return number(cpu.kdMinElements);
+    case P::KdMaxDepth: return cpu.kdMaxDepth == 0 ? "0 = 8 + 1.3 log2 N" : number(cpu.kdMaxDepth);
+    case P::GridKernels: return gpu.gridKernels == GridKernels::Merged ? "merged" : "split";
+    case P::LoopLimit: return number(gpu.loopLimit);
+    case P::PageTexels: return gpu.maxPageTexels == 0 ? "0 = the largest texture" : number(double(gpu.maxPageTexels));
+    case P::TriangleTest: return kTriangleTestNames[int(cpu.triangleTest)];
   }
   return "?";
 }

@@ -58,6 +58,13 @@ enum class BuildParam {
 };
 // The flag a parameter is given with, as --help shows it ("-g/--grid-multiplier").
 std::string_view buildParamFlag(BuildParam param);
+// Its default in the flag's own units ("1", "0 = 8 + 1.3 log2 N"), taken from
+// the default-constructed AccelBuildConfig / GpuTraversalConfig.
+std::string buildParamDefault(BuildParam param);
+inline constexpr BuildParam kBuildParams[] = {
+    BuildParam::SwapChildren,  BuildParam::GsTries,   BuildParam::GridMultiplier,
+    BuildParam::KdMinElements, BuildParam::KdMaxDepth, BuildParam::GridKernels,
+    BuildParam::LoopLimit,     BuildParam::PageTexels, BuildParam::TriangleTest};
 
 // Peak resident bytes per triangle of a run, measured (apps' memory check):
 // the slope between 1 M and 2 M triangles of the procedural "spheres" scene,

@@ -69,6 +69,37 @@ std::string catalogText() {
     on.resize(13, ' ');
     text += "  " + number + name + "  " + on + " " + std::string(s.description) + "\n";
   }
+  // Each parameter with its default and the structures that read it; a given
+  // flag the chosen structure does not read is a warning.
+  text += "Build parameters (default; read by):\n";
+  for (BuildParam p : kBuildParams) {
+    std::string flag(buildParamFlag(p)), value = buildParamDefault(p), readers;
+    size_t everywhere = 0, rayTracing = 0;  // rows reading it on all their renderers; rows but Embree's
+    for (const Structure& s : structures()) {
+      std::string on;
+      bool all = true;
+      for (RendererId r : kRenderers) {
+        if (!s.runsOn(r)) continue;
+        const std::vector<BuildParam> reads = s.readsOn(r);
+        if (std::find(reads.begin(), reads.end(), p) == reads.end()) {
+          all = false;
+          continue;
+        }
+        if (!on.empty()) on += ',';
+        on += rendererName(r);
+      }
+      if (!s.runsOn(RendererId::Embree)) ++rayTracing;
+      if (on.empty()) continue;
+      everywhere += all;
+      if (!readers.empty()) readers += ", ";
+      readers += s.name;
+      if (!all) readers += " on " + on;
+    }
+    if (everywhere == rayTracing && readers.find(" on ") == std::string::npos) readers = "every structure but embree";
+    flag.resize(22, ' ');
+    value.resize(24, ' ');
+    text += "  " + flag + value + readers + "\n";
+  }
   text += "Scenes (-s NAME or number, or a .obj/.aff/.nff/.gltf/.glb file):\n";
   for (const auto& [name, number] : sceneRows())
     text += "  " + (number.is_null() ? std::string(" ") : std::to_string(int(number))) + " " + name +

@@ -1,0 +1,51 @@
+// The command line's defaults are the registry's: each build parameter's
+// default in apps/cli_options.h (what -t, -e, ... are when not given) equals
+// buildParamDefault(), which `passtrace --list` prints and which comes from the
+// default-constructed AccelBuildConfig / GpuTraversalConfig the tests build with.
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+#include "accel/registry.h"
+#include "apps/cli_options.h"
+
+namespace passtrace {
+namespace {
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+// The leading number of "0 = 8 + 1.3 log2 N", or the whole text.
+std::string value(BuildParam p) {
+  const std::string d = buildParamDefault(p);
+  return d.substr(0, d.find(" = "));
+}
+
+TEST(CliDefaults, EqualTheRegistrysBuildParameterDefaults) {
+  const Options o;
+  EXPECT_EQ(number(o.swapChildren), value(BuildParam::SwapChildren));
+  EXPECT_EQ(number(o.gsTries), value(BuildParam::GsTries));
+  EXPECT_EQ(number(o.gridMultiplier), value(BuildParam::GridMultiplier));
+  EXPECT_EQ(number(o.kdMinElements), value(BuildParam::KdMinElements));
+  EXPECT_EQ(number(o.kdMaxDepth), value(BuildParam::KdMaxDepth));
+  EXPECT_EQ(o.gridKernels, value(BuildParam::GridKernels));
+  EXPECT_EQ(number(o.loopLimit), value(BuildParam::LoopLimit));
+  EXPECT_EQ(number(double(o.pageTexels)), value(BuildParam::PageTexels));
+  EXPECT_EQ(o.triangleTest, value(BuildParam::TriangleTest));
+}
+
+TEST(CliDefaults, EveryBuildParameterHasAFlagAndADefault) {
+  for (BuildParam p : kBuildParams) {
+    EXPECT_EQ(buildParamFlag(p).substr(0, 1), "-");
+    EXPECT_FALSE(buildParamDefault(p).empty());
+    EXPECT_NE(buildParamDefault(p), "?");
+  }
+}
+
+}  // namespace
+}  // namespace passtrace
