@@ -106,6 +106,9 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
   app.add_flag("-q,--quiet", o.quiet, "print nothing but errors");
   app.add_flag("--progress", o.progress, "show loading, building and frame progress on stderr (default: when it is a "
                "terminal)");
+  app.add_option("--export", o.exportPath,
+                 "write the scene's triangles as passtrace built them (at --time; same order as --hits ids) to "
+                 "FILE.obj (+ .mtl), .gltf or .glb, and exit without rendering");
   app.add_flag("--list", o.list, "list the renderers, structures and scenes (with --json: as JSON) and exit");
   app.add_flag("--version", o.version, "print the version and exit");
   if (!helpFooter.empty()) app.footer(std::string(helpFooter));

@@ -50,6 +50,7 @@ struct Options {
   std::string triangleTest = "moller-trumbore";  // --triangle-test: moller-trumbore or watertight
   uint64_t pageTexels = 0;          // --page-texels: GPU data texture size, 0 = the GL's largest
   std::string heatmap;              // --heatmap: per-pixel traversal steps as an image
+  std::string exportPath;           // --export: write the scene's triangles (.obj/.gltf/.glb) and exit
   bool stats = false;               // --stats: print structure and per-ray statistics
   bool quiet = false;               // -q: print nothing but errors
   bool progress = false;            // --progress: stages on stderr even when it is no terminal

@@ -30,6 +30,7 @@ RunSettings toRunSettings(const Options& o) {
   s.threads = o.threads;
   s.eye = o.eye, s.lookAt = o.lookAt, s.up = o.up, s.fov = o.fov;
   s.output = o.output, s.hits = o.hits, s.json = o.json, s.heatmap = o.heatmap;
+  s.exportPath = o.exportPath;
   s.glBackend = parseGlBackend(o.glBackend);
   static const std::map<std::string, BuildParam> kFlags = {
       {"--swap-children", BuildParam::SwapChildren},   {"--gs-tries", BuildParam::GsTries},

@@ -61,6 +61,8 @@ nlohmann::json toJson(const RunReport& r) {
 }
 
 std::string summaryText(const RunReport& r, bool withStats) {
+  if (!r.exported.empty())
+    return format("%s: %zu triangles written to %s\n", r.scene.c_str(), r.triangles, r.exported.c_str());
   const AccelStats& s = r.structure;
   std::string text;
   if (withStats) {

@@ -27,6 +27,7 @@ struct RunReport {
   std::string version;                 // passtrace's
   std::string scene;
   size_t triangles = 0;
+  std::string exported;  // --export: the file written instead of rendering
   std::string renderer;                // rendererName()
   int rendererId = 0;
   AccelStats structure;                // name "none" for the preview

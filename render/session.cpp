@@ -12,6 +12,7 @@
 #include "render/heatmap.h"
 #include "render/image_output.h"
 #include "render/memory_check.h"
+#include "scenes/scene_export.h"
 #include "render/renderer.h"
 #include "scenes/scene_scale.h"
 #include "stream/inout_stream.h"
@@ -102,9 +103,30 @@ const Structure* chooseStructure(const RunSettings& o, RunReport& report, Progre
   return structure;
 }
 
+
+// --export: the scene as loaded, written instead of rendered.
+RunReport exportOnly(const RunSettings& o, Progress& progress) {
+  if (!isExportFormat(o.exportPath))
+    throw std::runtime_error("--export " + o.exportPath + ": unknown format (expected .obj, .gltf or .glb)");
+  if (!o.output.empty() || !o.hits.empty() || !o.heatmap.empty() || !o.json.empty())
+    throw std::runtime_error("--export writes the scene and renders nothing: -o, --hits, --heatmap and --json do not apply");
+  RunReport report;
+  report.version = kVersion;
+  progress.stage("loading " + o.scene);
+  const Scene scene = loadScene(o.scene, o.sceneOptions);
+  progress.stage("writing " + o.exportPath);
+  exportScene(scene, o.exportPath);
+  progress.finish();
+  report.scene = scene.name;
+  report.triangles = scene.triangles.size();
+  report.exported = o.exportPath;
+  return report;
+}
+
 }  // namespace
 
 RunReport runSession(const RunSettings& o, Progress& progress) {
+  if (!o.exportPath.empty()) return exportOnly(o, progress);
   RunReport report;
   report.version = kVersion;
   // Reject an unknown structure before loading anything.

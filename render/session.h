@@ -38,6 +38,7 @@ struct RunSettings {
   GlBackend glBackend = GlBackend::Auto;
   std::vector<BuildParam> givenParams;  // flags given; those the structure ignores are warned of
   bool stats = false;                   // the summary's structure and per-ray lines
+  std::string exportPath;               // --export: write the scene (scenes/scene_export.h), render nothing
 };
 
 // Throws std::runtime_error (or a subclass) with a one-line message on any
