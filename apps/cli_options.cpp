@@ -51,7 +51,7 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
   app.add_option("--bart-dir", o.bartDir,
                  "directory holding the BART scenes kitchen/ and robots/ (default: $PASSTRACE_BART_DIR, else "
                  "../shared/scenes/bart)");
-  app.add_option("--time", o.time, "animation time for AFF scenes (Kochanek-Bartels keyframes)")
+  app.add_option("--time", o.time, "animation time: AFF keyframes (Kochanek-Bartels), glTF animations and morph weights")
       ->check(CLI::Range(-1e6f, 1e6f))->capture_default_str();
   app.add_option("-w,--resolution", size, "render N x N pixels (default 512)")->check(CLI::Range(1, kMaxImageSide));
   app.add_option("--width", o.width, "image width in pixels")->check(CLI::Range(1, kMaxImageSide));
@@ -106,6 +106,13 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
   app.add_flag("-q,--quiet", o.quiet, "print nothing but errors");
   app.add_flag("--progress", o.progress, "show loading, building and frame progress on stderr (default: when it is a "
                "terminal)");
+  app.add_option("--frames", o.frames,
+                 "render N frames evenly over --time-start..--time-end (default: the scene's animation range), "
+                 "rebuilding the structure each frame: -o NAME.png writes NAME_0000.png ... (default frame_0000.png); "
+                 "--json reports each frame's build and trace times")
+      ->check(CLI::Range(1, 100000));
+  app.add_option("--time-start", o.timeStart, "first time of --frames (default: the animation's start)");
+  app.add_option("--time-end", o.timeEnd, "last time of --frames (default: the animation's end)");
   app.add_option("--export", o.exportPath,
                  "write the scene's triangles as passtrace built them (at --time; same order as --hits ids) to "
                  "FILE.obj (+ .mtl), .gltf or .glb, and exit without rendering");

@@ -51,6 +51,8 @@ struct Options {
   uint64_t pageTexels = 0;          // --page-texels: GPU data texture size, 0 = the GL's largest
   std::string heatmap;              // --heatmap: per-pixel traversal steps as an image
   std::string exportPath;           // --export: write the scene's triangles (.obj/.gltf/.glb) and exit
+  int frames = 0;                   // --frames N: render a sequence over the animation (0: one frame at --time)
+  std::optional<float> timeStart, timeEnd;  // --time-start/--time-end (default: the scene's animation range)
   bool stats = false;               // --stats: print structure and per-ray statistics
   bool quiet = false;               // -q: print nothing but errors
   bool progress = false;            // --progress: stages on stderr even when it is no terminal

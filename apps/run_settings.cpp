@@ -1,5 +1,6 @@
 #include "apps/run_settings.h"
 
+#include <cmath>
 #include <map>
 #include <stdexcept>
 
@@ -31,6 +32,11 @@ RunSettings toRunSettings(const Options& o) {
   s.eye = o.eye, s.lookAt = o.lookAt, s.up = o.up, s.fov = o.fov;
   s.output = o.output, s.hits = o.hits, s.json = o.json, s.heatmap = o.heatmap;
   s.exportPath = o.exportPath;
+  s.frames = o.frames;
+  s.timeStart = o.timeStart, s.timeEnd = o.timeEnd;
+  for (const auto& t : {o.timeStart, o.timeEnd})
+    if (t && !std::isfinite(*t)) throw std::runtime_error("--time-start/--time-end: not a finite time");
+  if ((o.timeStart || o.timeEnd) && o.frames == 0) throw std::runtime_error("--time-start and --time-end need --frames");
   s.glBackend = parseGlBackend(o.glBackend);
   static const std::map<std::string, BuildParam> kFlags = {
       {"--swap-children", BuildParam::SwapChildren},   {"--gs-tries", BuildParam::GsTries},

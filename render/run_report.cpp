@@ -24,7 +24,7 @@ nlohmann::json toJson(const RunReport& r) {
   nlohmann::json frames = nlohmann::json::array();
   for (const FrameReport& f : r.frames)
     frames.push_back({{"angle", f.angle}, {"frame_ms", f.frameMs}, {"rays", f.rays}, {"passes", f.passes}});
-  return {
+  nlohmann::json j = {
       {"schema_version", kRunReportSchemaVersion},
       {"version", r.version},
       {"scene", r.scene},
@@ -58,6 +58,16 @@ nlohmann::json toJson(const RunReport& r) {
       {"frames", frames},
       {"warnings", r.warnings},
   };
+  // Only in --frames runs, so that a single frame's keys stay as they were.
+  if (!r.sequence.empty()) {
+    nlohmann::json sequence = nlohmann::json::array();
+    for (const SequenceFrame& f : r.sequence)
+      sequence.push_back({{"frame", f.frame}, {"time", f.time}, {"triangles", f.triangles},
+                          {"moving_triangles", f.movingTriangles}, {"build_ms", f.buildMs}, {"frame_ms", f.frameMs},
+                          {"rays", f.rays}, {"mrays_per_s", f.mraysPerS}});
+    j["sequence"] = sequence;
+  }
+  return j;
 }
 
 std::string summaryText(const RunReport& r, bool withStats) {
@@ -65,6 +75,13 @@ std::string summaryText(const RunReport& r, bool withStats) {
     return format("%s: %zu triangles written to %s\n", r.scene.c_str(), r.triangles, r.exported.c_str());
   const AccelStats& s = r.structure;
   std::string text;
+  if (!r.sequence.empty()) {
+    double build = 0;
+    for (const SequenceFrame& f : r.sequence) build += f.buildMs;
+    text += format("%zu frames, time %g to %g: build %.1f ms and trace %.2f ms per frame (means)\n", r.sequence.size(),
+                   double(r.sequence.front().time), double(r.sequence.back().time), build / double(r.sequence.size()),
+                   r.frameMs);
+  }
   if (withStats) {
     text += format("structure: %s, %zu nodes, %zu leaves, %zu triangle references, depth %u, %.2f floats/triangle\n",
                    s.name.c_str(), s.nodes, s.leaves, s.references, s.depth, s.floatsPerTriangle);

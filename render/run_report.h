@@ -16,6 +16,14 @@ namespace passtrace {
 
 inline constexpr int kRunReportSchemaVersion = 2;  // 2: schema_version, version, warnings
 
+// One frame of a --frames sequence: the scene at `time`, rebuilt and traced.
+struct SequenceFrame {
+  size_t frame = 0;
+  float time = 0;
+  size_t triangles = 0, movingTriangles = 0;
+  double buildMs = 0, frameMs = 0, rays = 0, mraysPerS = 0;
+};
+
 struct FrameReport {
   size_t angle = 0;
   double frameMs = 0;
@@ -40,6 +48,7 @@ struct RunReport {
   double stepsPerRay = 0, triangleTestsPerRay = 0;
   std::optional<std::string> glRenderer, glBackend;  // GL runs only
   std::vector<FrameReport> frames;
+  std::vector<SequenceFrame> sequence;  // --frames: one entry per frame of the sequence
   std::vector<std::string> warnings;  // also printed on stderr unless --quiet
 };
 

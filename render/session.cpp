@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 
@@ -12,8 +13,8 @@
 #include "render/heatmap.h"
 #include "render/image_output.h"
 #include "render/memory_check.h"
-#include "scenes/scene_export.h"
 #include "render/renderer.h"
+#include "scenes/scene_export.h"
 #include "scenes/scene_scale.h"
 #include "stream/inout_stream.h"
 
@@ -123,31 +124,137 @@ RunReport exportOnly(const RunSettings& o, Progress& progress) {
   return report;
 }
 
-}  // namespace
+// What every rendering run does before loading: the structure (an unknown
+// one is rejected before anything is read), the image size and the outputs
+// checked, and the GL context, whose limits on the image size are known
+// before anything is built.
+struct Prepared {
+  const Structure* structure = nullptr;
+  bool cpuTraced = false;
+  std::unique_ptr<GlContext> gl;
+};
 
-RunReport runSession(const RunSettings& o, Progress& progress) {
-  if (!o.exportPath.empty()) return exportOnly(o, progress);
-  RunReport report;
+Prepared prepare(const RunSettings& o, RunReport& report, Progress& progress) {
   report.version = kVersion;
-  // Reject an unknown structure before loading anything.
-  const Structure* structure = chooseStructure(o, report, progress);
-  const bool cpuTraced = o.renderer == RendererId::Cpu || o.renderer == RendererId::Embree;
-  if (cpuTraced && (long long)o.width * o.height > 16384LL * 16384LL)
+  Prepared p;
+  p.structure = chooseStructure(o, report, progress);
+  p.cpuTraced = o.renderer == RendererId::Cpu || o.renderer == RendererId::Embree;
+  if (p.cpuTraced && (long long)o.width * o.height > 16384LL * 16384LL)
     throw std::runtime_error("image " + std::to_string(o.width) + "x" + std::to_string(o.height) +
                              " is too large for the CPU renderer (at most 16384x16384 pixels)");
   if (o.renderer == RendererId::OpenGl && (!o.hits.empty() || !o.heatmap.empty()))
     throw std::runtime_error("--hits and --heatmap need a ray tracer (-r 1 or -r 2)");
   checkOutputs(o);
-  // The GL first: its limits on the image size are known before anything is built.
-  std::unique_ptr<GlContext> gl;
-  if (!cpuTraced) {
+  if (!p.cpuTraced) {
     std::string notices;
-    gl = GlContext::create(o.glBackend, &notices);
+    p.gl = GlContext::create(o.glBackend, &notices);
     if (!notices.empty()) progress.notice(notices);
     InOutStream::checkSize(o.width, o.height);
-    report.glRenderer = gl->renderer();
-    report.glBackend = gl->backend();
+    report.glRenderer = p.gl->renderer();
+    report.glBackend = p.gl->backend();
   }
+  return p;
+}
+
+// The report's fields that name the run rather than measure it.
+void describeRun(const RunSettings& o, const Structure* structure, RunReport& report) {
+  report.renderer = std::string(rendererName(o.renderer));
+  report.rendererId = int(o.renderer);
+  if (structure && structure->number && structure->numberedOn.has(o.renderer)) report.structureNumber = structure->number;
+  if (o.renderer == RendererId::Embree) report.triangleTest = "embree";
+  else if (o.renderer != RendererId::OpenGl) report.triangleTest = triangleTestName(o.gpu.build.triangleTest);
+  report.width = o.width, report.height = o.height, report.bounces = o.bounces, report.repeats = o.repeats;
+}
+
+// "out.png", k -> "out_0007.png": a sequence's frames sort by name.
+fs::path sequencePath(const fs::path& path, int k) {
+  char number[16];
+  std::snprintf(number, sizeof number, "_%04d", k);
+  return path.parent_path() / (path.stem().string() + number + path.extension().string());
+}
+
+// --frames N: the scene at N times over [start, end] (default: its animation
+// range), the structure rebuilt each frame, one image per frame; the JSON's
+// "sequence" has each frame's build and trace times.
+RunReport renderSequence(const RunSettings& o, Progress& progress) {
+  if (!o.hits.empty() || !o.heatmap.empty() || o.angles != 1 || o.dumpImages)
+    throw std::runtime_error("--frames renders one image per frame: --hits, --heatmap, -n and -p do not apply");
+  RunReport report;
+  const Prepared p = prepare(o, report, progress);
+  SceneOptions sceneOptions = o.sceneOptions;
+  progress.stage("loading " + o.scene);
+  Scene scene = loadScene(o.scene, sceneOptions);
+  if (!scene.animation && !(o.timeStart && o.timeEnd))
+    throw std::runtime_error(o.scene + ": the scene has no animation: give --time-start and --time-end for --frames");
+  const float start = o.timeStart ? *o.timeStart : scene.animation->start;
+  const float end = o.timeEnd ? *o.timeEnd : scene.animation->end;
+  if (!(start <= end)) throw std::runtime_error("--frames: the start time " + std::to_string(start) +
+                                                " is after the end time " + std::to_string(end));
+  const fs::path pattern = o.output.empty() ? fs::path("frame.png") : fs::path(o.output);
+  if (o.output.empty()) checkImageFormat(pattern.string());
+  std::vector<fs::path> written;  // removed again if a later frame fails
+  try {
+    double sumMs = 0, sumRays = 0, sumSteps = 0, sumTests = 0, sumPasses = 0;
+    RendererConfig config{o.width, o.height, o.bounces, o.threads, o.gpu};
+    for (int f = 0; f < o.frames; ++f) {
+      const float time = o.frames == 1 ? start : start + (end - start) * float(f) / float(o.frames - 1);
+      if (f > 0 || time != sceneOptions.time) {
+        sceneOptions.time = time;
+        scene = loadScene(o.scene, sceneOptions);
+      }
+      checkRunFitsInMemory(o.scene, o.renderer, p.structure, scene.triangles.size(), uint64_t(o.width) * uint64_t(o.height));
+      if (scene.triangles.empty()) throw std::runtime_error(o.scene + ": the scene has no triangles");
+      const CameraSpec view = cameraViews(scene, o).front();
+      makeCameraBasis(view, o.width, o.height);
+      progress.frame(size_t(f), size_t(o.frames));
+      const std::unique_ptr<Renderer> renderer = makeRenderer(o.renderer, p.structure, scene, config);
+      if (o.renderer == RendererId::Gpu) renderer->render(view, false);  // llvmpipe compiles on the first draw
+      FrameResult best;
+      for (int r = 0; r < o.repeats; ++r) {
+        FrameResult frame = renderer->render(view, false);
+        if (r == 0 || frame.stats.frameMs < best.stats.frameMs) best = std::move(frame);
+      }
+      written.push_back(sequencePath(pattern, f));
+      writeImage(written.back().string(), best.width, best.height, best.rgb);
+      const AccelStats stats = renderer->structureStats();
+      SequenceFrame record;
+      record.frame = size_t(f), record.time = time, record.triangles = scene.triangles.size();
+      record.movingTriangles = size_t(std::count(scene.moving.begin(), scene.moving.end(), uint8_t(1)));
+      record.buildMs = stats.buildMs, record.frameMs = best.stats.frameMs, record.rays = double(best.stats.rays);
+      record.mraysPerS = record.frameMs > 0 ? record.rays / record.frameMs / 1000.0 : 0.0;
+      report.sequence.push_back(record);
+      report.structure = stats;
+      sumMs += best.stats.frameMs, sumRays += double(best.stats.rays), sumPasses += double(best.stats.passes);
+      sumSteps += double(best.stats.steps), sumTests += double(best.stats.triangleTests);
+    }
+    progress.finish();
+    const double n = double(o.frames);
+    report.scene = scene.name;
+    report.triangles = scene.triangles.size();
+    describeRun(o, p.structure, report);
+    report.angles = 1;
+    report.rays = sumRays / n, report.frameMs = sumMs / n, report.passes = sumPasses / n;
+    report.mraysPerS = report.frameMs > 0 ? report.rays / report.frameMs / 1000.0 : 0.0;
+    report.steps = sumSteps / n, report.triangleTests = sumTests / n;
+    report.stepsPerRay = sumRays > 0 ? sumSteps / sumRays : 0.0;
+    report.triangleTestsPerRay = sumRays > 0 ? sumTests / sumRays : 0.0;
+    if (!o.json.empty()) writeTextFile(o.json, toJson(report).dump(2) + "\n");
+  } catch (...) {
+    std::error_code ec;
+    for (const fs::path& file : written) fs::remove(file, ec);
+    throw;
+  }
+  return report;
+}
+
+}  // namespace
+
+RunReport runSession(const RunSettings& o, Progress& progress) {
+  if (!o.exportPath.empty()) return exportOnly(o, progress);
+  if (o.frames > 0) return renderSequence(o, progress);
+  RunReport report;
+  Prepared prepared = prepare(o, report, progress);
+  const Structure* structure = prepared.structure;
   // Say so before trying: the procedural scene's size is known before it is
   // made, a file's once it is read.
   const uint64_t pixels = uint64_t(o.width) * uint64_t(o.height);
@@ -207,13 +314,8 @@ RunReport runSession(const RunSettings& o, Progress& progress) {
   const double n = double(views.size());
   report.scene = scene.name;
   report.triangles = scene.triangles.size();
-  report.renderer = std::string(rendererName(o.renderer));
-  report.rendererId = int(o.renderer);
   report.structure = renderer->structureStats();
-  if (structure && structure->number && structure->numberedOn.has(o.renderer)) report.structureNumber = structure->number;
-  if (o.renderer == RendererId::Embree) report.triangleTest = "embree";
-  else if (o.renderer != RendererId::OpenGl) report.triangleTest = triangleTestName(o.gpu.build.triangleTest);
-  report.width = o.width, report.height = o.height, report.bounces = o.bounces, report.repeats = o.repeats;
+  describeRun(o, structure, report);
   report.angles = views.size();
   report.rays = sumRays / n;
   report.frameMs = sumMs / n;

@@ -39,6 +39,8 @@ struct RunSettings {
   std::vector<BuildParam> givenParams;  // flags given; those the structure ignores are warned of
   bool stats = false;                   // the summary's structure and per-ray lines
   std::string exportPath;               // --export: write the scene (scenes/scene_export.h), render nothing
+  int frames = 0;                       // --frames N: a sequence over the animation; 0 = one frame at --time
+  std::optional<float> timeStart, timeEnd;  // --time-start/--time-end; default: the scene's animation range
 };
 
 // Throws std::runtime_error (or a subclass) with a one-line message on any

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -108,9 +109,11 @@ class AffParser {
         ambient_ = vec3(r, "ambient colour");
         haveAmbient_ = true;
       } else if (cmd == "a") {
-        r.real("animation start time");
-        r.real("animation end time");
+        // BART's animation parameters: the range --frames spans by default.
+        const float start = r.real("animation start time"), end = r.real("animation end time");
         r.real("animation frame count");
+        if (!(start <= end)) r.failAt(r.lastLine(), "animation start time is after its end time");
+        declaredRange_ = TimeRange{start, end};
       } else if (cmd == "f") {
         nffMaterial(r);
       } else if (cmd == "fm") {
@@ -383,6 +386,8 @@ class AffParser {
       for (std::size_t i = 0; i < n; ++i) {
         KbKey k;
         k.time = r.real("key time");
+        keyRange_ = keyRange_ ? TimeRange{std::min(keyRange_->start, k.time), std::max(keyRange_->end, k.time)}
+                              : TimeRange{k.time, k.time};
         const glm::vec3 value = vec3(r, "key value");  // sequenced: arguments' order is unspecified
         k.value = glm::vec4(value, rotation ? r.real("key angle") : 0.0f);
         k.tension = r.real("key tension");
@@ -396,6 +401,7 @@ class AffParser {
   }
 
   float time_;
+  std::optional<TimeRange> declaredRange_, keyRange_;  // the `a` line's; the keyframes' times
   Scene scene_;
   std::vector<Node> nodes_;
   int currentNode_ = 0;
@@ -427,8 +433,10 @@ Scene AffParser::finish(const fs::path& path) {
   // World matrices at time_ (parents precede children).
   std::vector<glm::mat4> world(nodes_.size(), glm::mat4(1.0f));
   std::vector<glm::mat3> normalMatrix(nodes_.size(), glm::mat3(1.0f));
+  std::vector<uint8_t> moves(nodes_.size(), 0);  // an animated transform at or above the node
   for (std::size_t i = 1; i < nodes_.size(); ++i) {
     const Node& node = nodes_[i];
+    moves[i] = node.animated || moves[static_cast<std::size_t>(node.parent)];
     glm::mat4 local = node.matrix;
     if (node.animated) {
       const auto it = animations_.find(node.name);
@@ -468,6 +476,9 @@ Scene AffParser::finish(const fs::path& path) {
     }
   }
   normals_.clear();
+  scene_.animation = declaredRange_ ? declaredRange_ : keyRange_;
+  if (std::any_of(triangleNode_.begin(), triangleNode_.end(), [&](int n) { return moves[static_cast<std::size_t>(n)]; }))
+    for (int n : triangleNode_) scene_.moving.push_back(moves[static_cast<std::size_t>(n)]);
 
   const Aabb box = scene_.bounds();
   if (!haveView_) scene_.camera = framedCamera(box);

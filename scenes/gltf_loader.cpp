@@ -40,6 +40,7 @@
 #pragma GCC diagnostic pop
 #endif
 
+#include "scenes/gltf_animation.h"
 #include "scenes/scene_error.h"
 #include "scenes/scene_registry.h"
 #include "scenes/tessellate.h"
@@ -127,7 +128,8 @@ std::string_view jsonOf(const std::vector<unsigned char>& bytes, bool binary) {
 
 class GltfBuilder {
  public:
-  GltfBuilder(const fs::path& file, const tinygltf::Model& model) : file_(file), model_(model) {}
+  GltfBuilder(const fs::path& file, const tinygltf::Model& model, float time)
+      : file_(file), model_(model), time_(time) {}
 
   Scene build();
 
@@ -196,6 +198,17 @@ class GltfBuilder {
     return out;
   }
 
+  // An accessor of floats, `components` (1, 3 or 4) per element: the
+  // animation samplers' reader (scenes/gltf_animation.h).
+  std::vector<float> floats(int accessorIndex, int components, const std::string& where) const {
+    const int type = components == 1 ? TINYGLTF_TYPE_SCALAR : components == 3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4;
+    const View v = view(accessorIndex, where, type, {TINYGLTF_COMPONENT_TYPE_FLOAT});
+    std::vector<float> out(v.count * std::size_t(components));
+    for (std::size_t i = 0; i < v.count; ++i)
+      std::memcpy(&out[i * std::size_t(components)], v.data + i * v.stride, sizeof(float) * std::size_t(components));
+    return out;
+  }
+
   std::vector<uint32_t> indices(int accessorIndex, const std::string& where) const {
     const View v = view(accessorIndex, where, TINYGLTF_TYPE_SCALAR,
                         {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
@@ -226,6 +239,9 @@ class GltfBuilder {
 
   glm::mat4 localMatrix(const tinygltf::Node& node, std::size_t index) const {
     const std::string name = "node " + std::to_string(index);
+    const bool animated = pose_.translation[index] || pose_.rotation[index] || pose_.scale[index];
+    if (!node.matrix.empty() && animated) fail(name + ": an animated node must not have a matrix (glTF 2.0 3.7.3)");
+    if (animated) return posedMatrix(node, index);
     if (!node.matrix.empty()) {
       if (node.matrix.size() != 16) fail(name + ": matrix needs 16 numbers");
       glm::mat4 m;
@@ -250,7 +266,22 @@ class GltfBuilder {
     return m;
   }
 
-  void visit(int index, const glm::mat4& parent, std::size_t depth, const std::string& from) {
+  // translation * rotation * scale, each from the animation where a channel
+  // targets it, else from the node.
+  glm::mat4 posedMatrix(const tinygltf::Node& node, std::size_t i) const {
+    glm::vec3 t(0.0f), s(1.0f);
+    glm::quat r(1.0f, 0.0f, 0.0f, 0.0f);
+    if (node.translation.size() == 3) t = glm::vec3(node.translation[0], node.translation[1], node.translation[2]);
+    if (node.rotation.size() == 4)
+      r = glm::normalize(glm::quat(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]), float(node.rotation[2])));
+    if (node.scale.size() == 3) s = glm::vec3(node.scale[0], node.scale[1], node.scale[2]);
+    if (pose_.translation[i]) t = *pose_.translation[i];
+    if (pose_.rotation[i]) r = *pose_.rotation[i];
+    if (pose_.scale[i]) s = *pose_.scale[i];
+    return glm::translate(glm::mat4(1.0f), t) * glm::mat4_cast(r) * glm::scale(glm::mat4(1.0f), s);
+  }
+
+  void visit(int index, const glm::mat4& parent, std::size_t depth, const std::string& from, bool parentMoves = false) {
     if (index < 0 || static_cast<std::size_t>(index) >= model_.nodes.size())
       fail(from + ": node " + std::to_string(index) + " does not exist (" + std::to_string(model_.nodes.size()) +
            " nodes)");
@@ -262,6 +293,8 @@ class GltfBuilder {
     if (depth > kMaxNodeDepth) fail("node " + std::to_string(index) + ": nodes nested deeper than " + std::to_string(kMaxNodeDepth));
     const tinygltf::Node& node = model_.nodes[i];
     const glm::mat4 world = parent * localMatrix(node, i);
+    // Moves over the animation: an animated node or one below it.
+    const bool moves = parentMoves || pose_.targeted[i];
     // Every entry: finite factors can overflow in the product, and an
     // infinite off-diagonal entry turns vertices into NaN.
     for (int c = 0; c < 4; ++c)
@@ -307,12 +340,34 @@ class GltfBuilder {
       if (static_cast<std::size_t>(node.mesh) >= model_.meshes.size())
         fail("node " + std::to_string(index) + ": mesh " + std::to_string(node.mesh) + " does not exist (" +
              std::to_string(model_.meshes.size()) + " meshes)");
-      addMesh(static_cast<std::size_t>(node.mesh), world);
+      addMesh(static_cast<std::size_t>(node.mesh), world, morphWeights(node, i), moves);
     }
-    for (int child : node.children) visit(child, world, depth + 1, "node " + std::to_string(index));
+    for (int child : node.children) visit(child, world, depth + 1, "node " + std::to_string(index), moves);
   }
 
-  void addMesh(std::size_t meshIndex, const glm::mat4& world) {
+  // The node's morph-target weights: animated, else the node's, else the mesh's.
+  std::vector<float> morphWeights(const tinygltf::Node& node, std::size_t i) const {
+    if (pose_.weights[i]) return *pose_.weights[i];
+    const std::vector<double>& w =
+        !node.weights.empty() ? node.weights : model_.meshes[static_cast<std::size_t>(node.mesh)].weights;
+    return std::vector<float>(w.begin(), w.end());
+  }
+
+  // Adds sum_k weight_k * target_k's `attribute` deltas to `values`.
+  void morph(const tinygltf::Primitive& prim, const char* attribute, const std::vector<float>& weights,
+             std::vector<glm::vec3>& values, const std::string& where) const {
+    for (std::size_t k = 0; k < prim.targets.size() && k < weights.size(); ++k) {
+      const auto delta = prim.targets[k].find(attribute);
+      if (delta == prim.targets[k].end() || weights[k] == 0.0f) continue;
+      const std::vector<glm::vec3> d = vec3s(delta->second, where + ": morph target " + std::to_string(k));
+      if (d.size() != values.size())
+        fail(where + ": morph target " + std::to_string(k) + " has " + std::to_string(d.size()) + " " + attribute +
+             " values for " + std::to_string(values.size()) + " vertices");
+      for (std::size_t j = 0; j < values.size(); ++j) values[j] += weights[k] * d[j];
+    }
+  }
+
+  void addMesh(std::size_t meshIndex, const glm::mat4& world, const std::vector<float>& weights, bool moves) {
     const tinygltf::Mesh& mesh = model_.meshes[meshIndex];
     const glm::mat3 linear(world);
     const float det = glm::determinant(linear);
@@ -329,7 +384,7 @@ class GltfBuilder {
       }
       const auto position = prim.attributes.find("POSITION");
       if (position == prim.attributes.end()) fail(where + ": no POSITION attribute");
-      const std::vector<glm::vec3> positions = vec3s(position->second, where);
+      std::vector<glm::vec3> positions = vec3s(position->second, where);
       std::vector<glm::vec3> normals;
       if (const auto n = prim.attributes.find("NORMAL"); n != prim.attributes.end()) {
         normals = vec3s(n->second, where);
@@ -337,6 +392,9 @@ class GltfBuilder {
           fail(where + ": " + std::to_string(normals.size()) + " normals for " + std::to_string(positions.size()) +
                " positions");
       }
+      morph(prim, "POSITION", weights, positions, where);
+      if (!normals.empty()) morph(prim, "NORMAL", weights, normals, where);
+
       std::vector<uint32_t> order;
       if (prim.indices >= 0) {
         order = indices(prim.indices, where);
@@ -381,6 +439,7 @@ class GltfBuilder {
             fail(where + ": non-finite vertex after the node transforms (the coordinates overflow single precision)");
         scene_.triangles.push_back(t);
         scene_.materialIds.push_back(materialId);
+        scene_.moving.push_back(moves ? 1 : 0);
         std::array<glm::vec3, 3> vn{};
         const glm::vec3 face = faceNormal(t);
         for (int k = 0; k < 3; ++k) {
@@ -406,6 +465,8 @@ class GltfBuilder {
   bool haveCamera_ = false;
   bool haveLight_ = false;
   std::size_t skipped_ = 0;
+  float time_;
+  GltfPose pose_;
 };
 
 Scene GltfBuilder::build() {
@@ -421,6 +482,11 @@ Scene GltfBuilder::build() {
     scene_.materials.push_back(m);
   }
   visited_.assign(model_.nodes.size(), false);
+  const GltfFloatReader read = [this](int accessor, int components, const std::string& where) {
+    return floats(accessor, components, where);
+  };
+  pose_ = evaluateGltfAnimations(model_, time_, read);
+  scene_.animation = gltfAnimationRange(model_, read);
   std::vector<int> roots;
   if (!model_.scenes.empty()) {
     const int s = model_.defaultScene >= 0 ? model_.defaultScene : 0;
@@ -436,6 +502,7 @@ Scene GltfBuilder::build() {
   }
   for (int root : roots) visit(root, glm::mat4(1.0f), 0, "scene");
   if (anyNormals_) scene_.vertexNormals = std::move(normals_);
+  if (std::none_of(scene_.moving.begin(), scene_.moving.end(), [](uint8_t m) { return m != 0; })) scene_.moving.clear();
   if (skipped_ > 0)
     std::cerr << file_.string() << ": skipped " << skipped_ << " non-triangle primitive" << (skipped_ == 1 ? "" : "s")
               << "\n";
@@ -450,7 +517,8 @@ Scene GltfBuilder::build() {
 
 }  // namespace
 
-Scene loadGltf(const fs::path& path) {
+Scene loadGltf(const fs::path& path, float time) {
+  if (!std::isfinite(time)) throw SceneError(path, "animation time is not finite");
   struct stat info {};
   if (::stat(path.c_str(), &info) != 0) throw SceneError(path, std::string("cannot open: ") + std::strerror(errno));
   if (!S_ISREG(info.st_mode)) throw SceneError(path, "cannot open: not a regular file");
@@ -485,7 +553,7 @@ Scene loadGltf(const fs::path& path) {
     throw SceneError(path, std::string("bad glTF: ") + e.what());
   }
   if (!ok) throw SceneError(path, error.empty() ? "tinygltf could not read the file" : error);
-  return GltfBuilder(path, model).build();
+  return GltfBuilder(path, model, time).build();
 }
 
 }  // namespace passtrace

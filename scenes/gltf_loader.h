@@ -15,7 +15,9 @@
 // not, make n/3, n - 2 and n - 2 triangles (degenerate ones kept). POINTS and
 // LINES primitives are skipped with one warning line on stderr counting them.
 // Vertex normals (NORMAL) are kept; if some primitives lack them, their
-// triangles get the geometric normal.
+// triangles get the geometric normal. Morph targets add their weighted
+// POSITION and NORMAL deltas (weights: animated, else the node's, else the
+// mesh's).
 //
 // Materials: baseColorFactor's rgb is the diffuse colour. The mirror rule: a
 // material is a perfect mirror when metallicFactor >= 0.9 and roughnessFactor
@@ -36,7 +38,10 @@
 
 namespace passtrace {
 
-// The scene's name is the file's stem.
-Scene loadGltf(const std::filesystem::path& path);
+// The scene's name is the file's stem. Animations (scenes/gltf_animation.h)
+// are evaluated at `time` (seconds, the file's key times): node transforms and
+// morph-target weights; Scene::animation is their key range and
+// Scene::moving marks the triangles of animated nodes and the nodes below.
+Scene loadGltf(const std::filesystem::path& path, float time = 0.0f);
 
 }  // namespace passtrace

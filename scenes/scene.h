@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,11 @@ struct CameraSpec {
   glm::vec3 lookAt{0.0f};
   glm::vec3 up{0.0f, 1.0f, 0.0f};
   float fovDegrees = 45.0f;
+};
+
+// A span of animation time (--time, --time-start/--time-end), start <= end.
+struct TimeRange {
+  float start = 0.0f, end = 0.0f;
 };
 
 struct Scene {
@@ -62,6 +68,13 @@ struct Scene {
   // 2^scaleExponent: loadScene brings far-off scales into single precision's
   // safe range by this exact factor (scenes/scene_scale.h); 0 for most scenes.
   int scaleExponent = 0;
+  // The times the file animates over (AFF's `a` line or its keyframes, glTF's
+  // animation keys); none for a still scene. --frames spans it by default.
+  std::optional<TimeRange> animation;
+  // One flag per triangle: 1 where the triangle moves over the animation (an
+  // animated transform above it, or animated morph weights), 0 where it is
+  // static geometry. Empty: nothing moves.
+  std::vector<uint8_t> moving;
 
   Aabb bounds() const;
   bool hasVertexNormals() const { return !vertexNormals.empty(); }

@@ -72,7 +72,7 @@ Scene loadFile(const fs::path& path, const SceneOptions& options) {
   const std::string extension = lowerExtension(path);
   if (extension.empty()) throw SceneError(path, "unsupported scene format (no file extension)");
   if (extension == ".aff" || extension == ".nff") return loadAff(path, options.time);
-  if (extension == ".gltf" || extension == ".glb") return loadGltf(path);
+  if (extension == ".gltf" || extension == ".glb") return loadGltf(path, options.time);
   if (extension != ".obj") throw SceneError(path, "unsupported scene format '" + extension + "'");
   Scene scene = loadObj(path);
   frame(scene);

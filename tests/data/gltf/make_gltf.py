@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Writes the small glTF 2.0 files of tests/unit/gltf_loader_test.cpp (run from
+"""Writes the small glTF 2.0 files of tests/unit/gltf_loader_test.cpp and
+tests/unit/gltf_animation_test.cpp (run from
 this directory; the outputs are committed, so this is documentation)."""
 import base64, json, struct
 
@@ -18,7 +19,7 @@ class Builder:
         raw = struct.pack("<" + fmt * len(values), *values)
         self.views.append({"buffer": 0, "byteOffset": len(self.data), "byteLength": len(raw)})
         self.data += raw
-        n = {"VEC3": 3, "SCALAR": 1}[kind]
+        n = {"VEC4": 4, "VEC3": 3, "SCALAR": 1}[kind]
         acc = {"bufferView": len(self.views) - 1, "componentType": ctype, "type": kind,
                "count": count if count is not None else len(values) // n}
         acc.update(extra)
@@ -158,3 +159,42 @@ doc["buffers"][0]["uri"] = "missing.bin"
 write("missing_buffer.gltf", doc)
 with open("bad_json.gltf", "w") as f:
     f.write('{"asset": {"version": "2.0"}, "nodes": [\n')
+
+
+# animated.gltf: one triangle under five nodes. Node 0 is static; node 1's
+# translation (LINEAR, t 0 -> 2: (0,0,0) -> (4,0,0)) moves its child node 2;
+# node 3 rotates 90 degrees about z at t = 1 (STEP); node 4 scales 1 -> 3
+# (CUBICSPLINE, zero tangents: smoothstep). Triangles in order: 0 static,
+# 1, 2, 3 moving.
+b = Builder()
+pos = b.vec3(TRI)
+t01 = b.add("f", [0, 1], "SCALAR", FLOAT, min=[0], max=[1])
+t02 = b.add("f", [0, 2], "SCALAR", FLOAT, min=[0], max=[2])
+moves = b.add("f", [0, 0, 0, 4, 0, 0], "VEC3", FLOAT)
+turns = b.add("f", [0, 0, 0, 1, 0, 0, 0.7071067811865476, 0.7071067811865476], "VEC4", FLOAT)
+# in-tangent, value, out-tangent per key
+grows = b.add("f", [0, 0, 0, 1, 1, 1, 0, 0, 0, 0, 0, 0, 3, 3, 3, 0, 0, 0], "VEC3", FLOAT)
+write("animated.gltf", b.gltf(
+    scenes=[{"nodes": [0, 1, 3, 4]}],
+    nodes=[{"mesh": 0}, {"children": [2]}, {"mesh": 0}, {"mesh": 0}, {"mesh": 0}],
+    meshes=[{"primitives": [{"attributes": {"POSITION": pos}}]}],
+    animations=[{
+        "samplers": [{"input": t02, "output": moves, "interpolation": "LINEAR"},
+                     {"input": t01, "output": turns, "interpolation": "STEP"},
+                     {"input": t02, "output": grows, "interpolation": "CUBICSPLINE"}],
+        "channels": [{"sampler": 0, "target": {"node": 1, "path": "translation"}},
+                     {"sampler": 1, "target": {"node": 3, "path": "rotation"}},
+                     {"sampler": 2, "target": {"node": 4, "path": "scale"}}]}]))
+
+# morph.gltf: a unit quad (two triangles) with one morph target lifting every
+# vertex by (0, 0, 1); its weight goes 0 -> 1 over t 0 -> 1 (LINEAR).
+b = Builder()
+quad = b.vec3([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 0, 0), (1, 1, 0), (0, 1, 0)])
+lift = b.vec3([(0, 0, 1)] * 6)
+keys = b.add("f", [0, 1], "SCALAR", FLOAT, min=[0], max=[1])
+weights = b.add("f", [0, 1], "SCALAR", FLOAT)
+write("morph.gltf", b.gltf(
+    scenes=[{"nodes": [0]}], nodes=[{"mesh": 0}],
+    meshes=[{"primitives": [{"attributes": {"POSITION": quad}, "targets": [{"POSITION": lift}]}], "weights": [0]}],
+    animations=[{"samplers": [{"input": keys, "output": weights}],
+                 "channels": [{"sampler": 0, "target": {"node": 0, "path": "weights"}}]}]))
