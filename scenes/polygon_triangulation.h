@@ -16,7 +16,7 @@
 //    polygon's projection onto its Newell plane (the fan when the projection
 //    is convex, ear clipping otherwise), and the fan over the vertices left
 //    when clipping finds no ear; a polygon whose Newell normal vanishes (a
-//    symmetric bow-tie) is fanned. Such polygons are flagged `irregular`, for
+//    symmetric bow-tie) is fanned. Such polygons are flagged Irregular, for
 //    the loaders' counted warning (polygonWarning);
 //  - concave with more than kMaxEarClippingVertices vertices: the fan, also
 //    flagged (ear clipping costs O(n^2) and more).

@@ -40,7 +40,8 @@ Triangle triangle(glm::vec2 a, glm::vec2 b, glm::vec2 c) { return {onPlane(a), o
 // Started at (2, 0): the fan from there crosses the notch.
 Shape lShape() {
   Shape s{"l", {{2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}, {0, 0}}, {}};
-  for (const auto& [lo, hi] : {std::pair{glm::vec2(0, 0), glm::vec2(2, 1)}, std::pair{glm::vec2(0, 1), glm::vec2(1, 2)}}) {
+  const std::pair<glm::vec2, glm::vec2> rectangles[] = {{{0, 0}, {2, 1}}, {{0, 1}, {1, 2}}};  // corners
+  for (const auto& [lo, hi] : rectangles) {
     s.reference.push_back(triangle(lo, {hi.x, lo.y}, hi));
     s.reference.push_back(triangle(lo, hi, {lo.x, hi.y}));
   }

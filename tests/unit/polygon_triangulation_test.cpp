@@ -161,7 +161,8 @@ TEST(PolygonTriangulation, ConvexPolygonsGiveExactlyTheFan) {
       {{0, 0}, {1e-3, 0}, {1e-3, 1e-3}, {0, 1e-3}},        // small
       {{0, 0}, {3e30, 0}, {3e30, 2e30}, {0, 2e30}},        // large
   };
-  for (int k = 3; k <= 40; k += 7) convex.push_back(star(k, 1.0, std::cos(std::numbers::pi / k)));  // a k-gon and its edges' midpoints
+  // A regular k-gon with its edges' midpoints.
+  for (int k = 3; k <= 40; k += 7) convex.push_back(star(k, 1.0, std::cos(std::numbers::pi / k)));
   for (const auto& p : convex)
     for (const auto& q : {p, reversed(p)}) {
       const PolygonTriangles got = triangulatePolygon(inPlane(q));
@@ -384,7 +385,8 @@ void expectLWithNormals(const Scene& scene) {
       ids[k] = indexOf(corners[k]);
       const glm::vec3 expected = glm::normalize(glm::vec3(corners[k].x, corners[k].y, 1.0f));
       // OBJ keeps its normals' lengths, AFF normalizes them.
-      EXPECT_LT(glm::length(glm::normalize(scene.vertexNormals[t][k]) - expected), 1e-5f) << "triangle " << t << " corner " << k;
+      EXPECT_LT(glm::length(glm::normalize(scene.vertexNormals[t][k]) - expected), 1e-5f)
+          << "triangle " << t << " corner " << k;
     }
     asIndices.triangles.push_back(ids);
   }
