@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <iostream>
 #include <map>
 #include <optional>
 #include <string>
@@ -259,7 +260,7 @@ class AffParser {
       if (withNormals) normals.push_back(vec3(r, "vertex normal"));
     }
     TriangleList list;
-    triangulateFan(vertices, normals, list);
+    polygonWarnings_.count(appendPolygon(vertices, normals, list));
     emit(list, withNormals);
   }
 
@@ -419,6 +420,7 @@ class AffParser {
   std::vector<std::array<glm::vec3, 3>> normals_;
   std::vector<uint8_t> hasNormals_;
   bool anyNormals_ = false;
+  PolygonWarnings polygonWarnings_;  // for one warning per file, after loading
   std::map<std::string, AnimatedTransform> animations_;
   std::vector<fs::path> includeStack_;
   std::size_t includes_ = 0;
@@ -506,6 +508,7 @@ Scene AffParser::finish(const fs::path& path) {
   // shadowed streets and rooms readable without flattening the lit surfaces.
   if (haveAmbient_) scene_.ambient = std::clamp(0.3f * (ambient_.x + ambient_.y + ambient_.z) / 3.0f, 0.0f, 0.4f);
   scene_.name = path.stem().string();
+  std::cerr << polygonWarnings_.text(path);
   return std::move(scene_);
 }
 

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <iostream>
 #include <limits>
 #include <map>
 #include <string>
@@ -20,6 +21,7 @@
 
 #include <tiny_obj_loader.h>
 
+#include "scenes/polygon_triangulation.h"
 #include "scenes/scene_error.h"
 
 namespace passtrace {
@@ -315,6 +317,8 @@ Scene loadObj(const fs::path& path) {
   const auto defaultId = static_cast<uint32_t>(scene.materials.size());
   bool usesDefault = false;
 
+  PolygonWarnings polygonWarnings;
+  std::vector<glm::vec3> positions;
   for (const tinyobj::shape_t& shape : shapes) {
     const tinyobj::mesh_t& mesh = shape.mesh;
     std::size_t first = 0;
@@ -324,16 +328,16 @@ Scene loadObj(const fs::path& path) {
       const tinyobj::index_t* corners = &mesh.indices[first];
       const int material = mesh.material_ids[face];
       usesDefault |= material < 0;
-      for (std::size_t k = 1; k + 1 < count; ++k) {  // fan: (0,1,2), (0,2,3), ...
-        const tinyobj::index_t& a = corners[0];
-        const tinyobj::index_t& b = corners[k];
-        const tinyobj::index_t& c = corners[k + 1];
-        scene.triangles.push_back(Triangle{fetch(attrib.vertices, a.vertex_index),
-                                           fetch(attrib.vertices, b.vertex_index),
-                                           fetch(attrib.vertices, c.vertex_index)});
+      positions.clear();
+      for (std::size_t k = 0; k < count; ++k) positions.push_back(fetch(attrib.vertices, corners[k].vertex_index));
+      const PolygonTriangles polygon = triangulatePolygon(positions);
+      polygonWarnings.count(polygon.shape);
+      for (const auto& [a, b, c] : polygon.triangles) {
+        scene.triangles.push_back(Triangle{positions[a], positions[b], positions[c]});
         if (allNormals)
-          scene.vertexNormals.push_back({fetch(attrib.normals, a.normal_index), fetch(attrib.normals, b.normal_index),
-                                         fetch(attrib.normals, c.normal_index)});
+          scene.vertexNormals.push_back({fetch(attrib.normals, corners[a].normal_index),
+                                         fetch(attrib.normals, corners[b].normal_index),
+                                         fetch(attrib.normals, corners[c].normal_index)});
         scene.materialIds.push_back(material < 0 ? defaultId : static_cast<uint32_t>(material));
       }
       first += count;
@@ -343,6 +347,7 @@ Scene loadObj(const fs::path& path) {
     throw SceneError(path, "tinyobjloader read " + std::to_string(scene.triangles.size()) + " triangles where " +
                                std::to_string(checker.triangles()) + " were expected");
   if (usesDefault) scene.materials.push_back(Material{});
+  std::cerr << polygonWarnings.text(path);
   return scene;
 }
 

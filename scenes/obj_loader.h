@@ -1,6 +1,9 @@
 #pragma once
-// Wavefront OBJ (+ .mtl) into a Scene. Polygons are fan-triangulated in file
-// order; anything malformed throws SceneError naming the file and line.
+// Wavefront OBJ (+ .mtl) into a Scene. Faces in file order, each one's n - 2
+// triangles consecutive, triangulated as polygon_triangulation.h says
+// (convex: the fan from the first corner; concave: ear clipping), with one
+// warning line on stderr counting the non-planar and self-intersecting ones;
+// anything malformed throws SceneError naming the file and line.
 
 #include <filesystem>
 

@@ -76,26 +76,42 @@ void tessellateCone(const glm::vec3& base, float baseRadius, const glm::vec3& ap
   }
 }
 
-void triangulateFan(const std::vector<glm::vec3>& vertices, const std::vector<glm::vec3>& normals,
-                    TriangleList& out) {
-  if (vertices.size() < 3) return;
+namespace {
+
+// Appends the triangles `corners` picks out of the polygon (see appendPolygon).
+void appendTriangles(const std::vector<glm::vec3>& vertices, const std::vector<glm::vec3>& normals,
+                     const std::vector<std::array<uint32_t, 3>>& corners, TriangleList& out) {
   glm::vec3 geometric(0.0f, 0.0f, 1.0f);
   if (normals.empty()) {
-    for (std::size_t i = 1; i + 1 < vertices.size(); ++i) {
-      const glm::vec3 n = faceNormal({vertices[0], vertices[i], vertices[i + 1]}, glm::vec3(0.0f));
+    for (const auto& [a, b, c] : corners) {
+      const glm::vec3 n = faceNormal({vertices[a], vertices[b], vertices[c]}, glm::vec3(0.0f));
       if (n != glm::vec3(0.0f)) {
         geometric = n;
         break;
       }
     }
   }
-  for (std::size_t i = 1; i + 1 < vertices.size(); ++i) {
-    out.triangles.push_back({vertices[0], vertices[i], vertices[i + 1]});
+  for (const auto& [a, b, c] : corners) {
+    out.triangles.push_back({vertices[a], vertices[b], vertices[c]});
     if (normals.empty())
       out.normals.push_back({geometric, geometric, geometric});
     else
-      out.normals.push_back({normals[0], normals[i], normals[i + 1]});
+      out.normals.push_back({normals[a], normals[b], normals[c]});
   }
+}
+
+}  // namespace
+
+PolygonShape appendPolygon(const std::vector<glm::vec3>& vertices, const std::vector<glm::vec3>& normals,
+                           TriangleList& out) {
+  const PolygonTriangles polygon = triangulatePolygon(vertices);
+  appendTriangles(vertices, normals, polygon.triangles, out);
+  return polygon.shape;
+}
+
+void triangulateFan(const std::vector<glm::vec3>& vertices, const std::vector<glm::vec3>& normals,
+                    TriangleList& out) {
+  appendTriangles(vertices, normals, fanTriangles(vertices.size()), out);
 }
 
 }  // namespace passtrace

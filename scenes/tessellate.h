@@ -2,8 +2,9 @@
 // Curved NFF primitives and polygons to triangles, with vertex normals.
 //
 // Counting rules (they fix the triangle count of any NFF/AFF file):
-//  - a polygon or patch with n vertices: a fan of n - 2 triangles
-//    (v0, v[i], v[i+1]), i = 1..n-2, degenerate ones kept;
+//  - a polygon or patch with n vertices: n - 2 triangles, degenerate ones
+//    kept; convex ones the fan (v0, v[i], v[i+1]), i = 1..n-2, others as
+//    polygon_triangulation.h says;
 //  - a sphere: kSphereSlices around by kSphereStacks from pole to pole, the
 //    two polar rings fans, every other band quads split in two:
 //    2 * slices * (stacks - 1) triangles (224);
@@ -17,6 +18,7 @@
 #include <glm/glm.hpp>
 
 #include "accel/geometry/geometry.h"
+#include "scenes/polygon_triangulation.h"
 
 namespace passtrace {
 
@@ -33,9 +35,14 @@ void tessellateSphere(const glm::vec3& centre, float radius, TriangleList& out, 
                       int stacks = kSphereStacks);
 void tessellateCone(const glm::vec3& base, float baseRadius, const glm::vec3& apex, float apexRadius,
                     TriangleList& out, int slices = kConeSlices);
-// Appends the fan of a polygon; `normals` is empty or one per vertex. Without
+// Appends a polygon's triangles (triangulatePolygon) and returns its shape;
+// `normals` is empty or one per vertex, and follow their vertices. Without
 // normals every corner gets the polygon's geometric normal (from the first
 // triangle with non-zero area, or +z when all are degenerate).
+PolygonShape appendPolygon(const std::vector<glm::vec3>& vertices, const std::vector<glm::vec3>& normals,
+                           TriangleList& out);
+// The same for a polygon known to be convex (the built-in scenes' quads):
+// always the fan.
 void triangulateFan(const std::vector<glm::vec3>& vertices, const std::vector<glm::vec3>& normals,
                     TriangleList& out);
 
