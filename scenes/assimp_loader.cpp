@@ -67,6 +67,7 @@ class AssimpBuilder {
         const aiMesh& mesh = meshAt(p.node->mMeshes[k]);
         for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
           const unsigned n = mesh.mFaces[f].mNumIndices;
+          if (n == 0) fail("mesh " + std::to_string(p.node->mMeshes[k]) + " face " + std::to_string(f) + " has no corners");
           if (n > kMaxFaceCorners)
             fail("mesh " + std::to_string(p.node->mMeshes[k]) + " face " + std::to_string(f) + " has " +
                  std::to_string(n) + " corners; at most " + std::to_string(kMaxFaceCorners) + " are supported");
@@ -228,6 +229,21 @@ Scene loadWithAssimp(const fs::path& path) {
     const aiScene* read = importer.ReadFile(path.string(), aiProcess_ValidateDataStructure);
     if (read == nullptr) throw SceneError(path, assimpError(importer, "Assimp could not read the file"));
     AssimpBuilder(path, *read).checkBeforeTriangulating();
+    // Assimp 5.2's triangulation asserts (an abort) when a mesh's primitive
+    // types claim polygons that its faces lack, which its PLY reader can
+    // leave behind on a malformed body: the types are recomputed from the
+    // faces. The scene is the importer's until it is freed.
+    for (unsigned m = 0; m < read->mNumMeshes; ++m) {
+      aiMesh* mesh = const_cast<aiMesh*>(read->mMeshes[m]);
+      unsigned types = 0;
+      for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+        const unsigned n = mesh->mFaces[f].mNumIndices;
+        if (n == 0) continue;  // refused above
+        types |= n == 1 ? aiPrimitiveType_POINT : n == 2 ? aiPrimitiveType_LINE : n == 3 ? aiPrimitiveType_TRIANGLE
+                                                                                         : aiPrimitiveType_POLYGON;
+      }
+      mesh->mPrimitiveTypes = types;
+    }
     const aiScene* triangulated = importer.ApplyPostProcessing(aiProcess_Triangulate);
     if (triangulated == nullptr) throw SceneError(path, assimpError(importer, "Assimp could not triangulate"));
     return AssimpBuilder(path, *triangulated).build();

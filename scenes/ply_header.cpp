@@ -39,6 +39,7 @@ struct Element {
   uint64_t properties = 0;
   uint64_t fixedBytes = 0;  // per instance: scalars, and each list's count
   std::vector<Property> layout;
+  std::vector<std::string> scalarNames;
 };
 
 std::vector<std::string_view> words(std::string_view line) {
@@ -172,6 +173,7 @@ PlyHeaderSummary checkPlyHeader(const fs::path& file) {
         if (property.bytes > 4) fail("list count type " + quoted(w[2]) + " is not an integer type");
       }
       e.layout.push_back(property);
+      if (!list) e.scalarNames.emplace_back(w[2]);
     } else {
       fail("unknown header keyword " + quoted(w[0]));
     }
@@ -190,6 +192,11 @@ PlyHeaderSummary checkPlyHeader(const fs::path& file) {
       throw SceneError(file, e.line,
                        "element '" + e.name + "' declares " + std::to_string(e.count) + " instances, more than the " +
                            std::to_string(body) + " bytes after the header can hold");
+    // A vertex without a position is no vertex (Assimp would make up zeros).
+    if (e.name == "vertex")
+      for (const char* axis : {"x", "y", "z"})
+        if (std::find(e.scalarNames.begin(), e.scalarNames.end(), axis) == e.scalarNames.end())
+          throw SceneError(file, e.line, std::string("element 'vertex' has no property ") + axis);
     if (e.name == "vertex") summary.vertices = e.count;
     if (e.name == "face" || e.name == "tristrips") summary.faces = plus(summary.faces, e.count);
   }
