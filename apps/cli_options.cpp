@@ -44,7 +44,7 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
       ->capture_default_str();
   app.add_option("-s,--scene", o.scene,
                  "scene: 0 cows, 1 robots, 2 kitchen, 3 bunny, 4 cornell (thesis order), by number or name; "
-                 "spheres (procedural, --triangles); or a .obj, .aff, .nff, .gltf or .glb file")
+                 "spheres (procedural, --triangles); or a .obj, .aff, .nff, .gltf, .glb, .ply, .stl, .off, .dae, .3ds, .x or .fbx file")
       ->capture_default_str();
   app.add_option("--triangles", o.triangles, "size of the procedural 'spheres' scene (at least this many triangles)")
       ->check(CLI::Range(kSphereFieldMinTriangles, kSphereFieldMaxTriangles))->capture_default_str();

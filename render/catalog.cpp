@@ -100,7 +100,8 @@ std::string catalogText() {
     value.resize(24, ' ');
     text += "  " + flag + value + readers + "\n";
   }
-  text += "Scenes (-s NAME or number, or a .obj/.aff/.nff/.gltf/.glb file):\n";
+  text += "Scenes (-s NAME or number, or a .obj/.aff/.nff/.gltf/.glb file, or through Assimp a "
+          ".ply/.stl/.off/.dae/.3ds/.x/.fbx file):\n";
   for (const auto& [name, number] : sceneRows())
     text += "  " + (number.is_null() ? std::string(" ") : std::to_string(int(number))) + " " + name +
             (number.is_null() ? " (procedural, --triangles)" : "") + "\n";

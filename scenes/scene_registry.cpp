@@ -10,8 +10,11 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "scenes/aff_loader.h"
+#include "scenes/assimp_loader.h"
 #include "scenes/cornell_box.h"
 #include "scenes/cows_scene.h"
 #include "scenes/gltf_loader.h"
@@ -73,6 +76,8 @@ Scene loadFile(const fs::path& path, const SceneOptions& options) {
   if (extension.empty()) throw SceneError(path, "unsupported scene format (no file extension)");
   if (extension == ".aff" || extension == ".nff") return loadAff(path, options.time);
   if (extension == ".gltf" || extension == ".glb") return loadGltf(path, options.time);
+  const std::vector<std::string>& viaAssimp = assimpExtensions();
+  if (std::find(viaAssimp.begin(), viaAssimp.end(), extension) != viaAssimp.end()) return loadWithAssimp(path);
   if (extension != ".obj") throw SceneError(path, "unsupported scene format '" + extension + "'");
   Scene scene = loadObj(path);
   frame(scene);

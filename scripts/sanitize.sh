@@ -25,7 +25,7 @@ fi
 # exitcode=23 tells a sanitizer report from passtrace's own error status (1).
 export ASAN_OPTIONS="halt_on_error=1:abort_on_error=0:exitcode=23:detect_leaks=1:check_initialization_order=1:strict_init_order=1:print_stacktrace=1"
 export UBSAN_OPTIONS="halt_on_error=1:exitcode=23:print_stacktrace=1"
-# Leaks inside Mesa/LLVM only; why each is there is in the file.
+# Leaks inside Mesa/LLVM/Assimp only; why each is there is in the file.
 export LSAN_OPTIONS="suppressions=$PWD/tests/sanitizer/lsan.supp:print_suppressions=0"
 
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Debug -DPASSTRACE_SANITIZE=ON

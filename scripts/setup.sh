@@ -13,6 +13,7 @@ packages=(
   libglm-dev libcli11-dev nlohmann-json3-dev libgtest-dev   # GoogleTest: the tests (optional)
   libopenimageio-dev                            # image and OpenEXR output
   libtinyobjloader-dev libtinygltf-dev          # scene loaders
+  libassimp-dev                                 # Open Asset Import Library: PLY, STL, FBX, COLLADA, 3DS
   libtbb-dev                                    # oneTBB: the CPU renderer's threads
   glmark2-data                                  # the Stanford bunny (bunny.obj)
   libembree-dev                                 # Intel Embree 3, the CPU baseline (-r 3; optional)

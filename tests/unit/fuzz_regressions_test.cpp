@@ -56,7 +56,7 @@ class FuzzRegressions : public ::testing::Test {
     dir_ = fs::temp_directory_path() / ("passtrace_fuzz_regressions_" + std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::copy(kRegressions, dir_, fs::copy_options::recursive);
-    for (const char* target : {"obj", "aff", "gltf"}) {
+    for (const char* target : {"obj", "aff", "gltf", "ply"}) {
       fs::create_directories(dir_ / target / "adir");
       ASSERT_EQ(::mkfifo((dir_ / target / "fifo").c_str(), 0600), 0);
     }
@@ -94,6 +94,11 @@ TEST_F(FuzzRegressions, AffInputsEndCleanly) {
 
 TEST_F(FuzzRegressions, GltfInputsEndCleanly) {
   for (const fs::path& input : inputsIn(dir_ / "gltf", {".gltf", ".glb"}))
+    EXPECT_EQ(outcome(input, [](const fs::path& p) { return loadScene(p.string()); }), "") << input;
+}
+
+TEST_F(FuzzRegressions, PlyInputsEndCleanly) {
+  for (const fs::path& input : inputsIn(dir_ / "ply", {".ply"}))
     EXPECT_EQ(outcome(input, [](const fs::path& p) { return loadScene(p.string()); }), "") << input;
 }
 

@@ -1,0 +1,210 @@
+#include "scenes/ply_header.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "scenes/scene_error.h"
+
+namespace passtrace {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::size_t kMaxHeaderBytes = std::size_t{1} << 20;
+
+// PLY's scalar types and their sizes in bytes, under both of the names in use.
+const std::map<std::string_view, uint64_t> kTypeSizes = {
+    {"char", 1},  {"uchar", 1},  {"int8", 1},    {"uint8", 1},   {"short", 2},   {"ushort", 2},
+    {"int16", 2}, {"uint16", 2}, {"int", 4},     {"uint", 4},    {"int32", 4},   {"uint32", 4},
+    {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
+
+struct Property {
+  uint64_t bytes = 0;      // a scalar's size, or a list's count's size
+  uint64_t itemBytes = 0;  // a list item's size; 0 for a scalar
+  bool signedCount = false;
+};
+
+struct Element {
+  std::string name;
+  uint64_t count = 0;
+  std::size_t line = 0;
+  uint64_t properties = 0;
+  uint64_t fixedBytes = 0;  // per instance: scalars, and each list's count
+  std::vector<Property> layout;
+  std::vector<std::string> scalarNames;
+};
+
+std::vector<std::string_view> words(std::string_view line) {
+  std::vector<std::string_view> out;
+  for (std::size_t p = 0; p < line.size();) {
+    const std::size_t begin = line.find_first_not_of(" \t", p);
+    if (begin == std::string_view::npos) break;
+    const std::size_t end = std::min(line.find_first_of(" \t", begin), line.size());
+    out.push_back(line.substr(begin, end - begin));
+    p = end;
+  }
+  return out;
+}
+
+std::string quoted(std::string_view token) {
+  std::string out = "'";
+  for (char c : token.substr(0, 40)) out += (c >= 0x20 && c < 0x7f) ? c : '?';
+  return out + (token.size() > 40 ? "...'" : "'");
+}
+
+// A multiplication that saturates instead of wrapping (counts near 2^64).
+uint64_t times(uint64_t a, uint64_t b) {
+  uint64_t product = 0;
+  return __builtin_mul_overflow(a, b, &product) ? UINT64_MAX : product;
+}
+
+uint64_t plus(uint64_t a, uint64_t b) { return a > UINT64_MAX - b ? UINT64_MAX : a + b; }
+
+// Walks a binary body instance by instance (lists make instances differ in
+// size) and reports the first instance the file ends inside: Assimp would
+// read past the end as zeros and fail later with a vaguer message.
+void checkBinaryBody(const fs::path& file, std::ifstream& in, uint64_t start, uint64_t fileBytes, bool bigEndian,
+                     const std::vector<Element>& elements) {
+  uint64_t at = start;
+  for (const Element& e : elements) {
+    const bool hasList = std::any_of(e.layout.begin(), e.layout.end(), [](const Property& p) { return p.itemBytes > 0; });
+    if (!hasList) {  // checked by the caller's size bound already
+      at += e.count * e.fixedBytes;
+      continue;
+    }
+    for (uint64_t i = 0; i < e.count; ++i)
+      for (const Property& p : e.layout) {
+        const auto truncated = [&] {
+          return SceneError(file, "binary body ends inside " + e.name + " " + std::to_string(i) + " of " +
+                                      std::to_string(e.count) + " (truncated file?)");
+        };
+        if (p.bytes > fileBytes - std::min(at, fileBytes)) throw truncated();
+        uint64_t items = 0;
+        if (p.itemBytes > 0) {
+          unsigned char raw[4] = {};
+          in.seekg(static_cast<std::streamoff>(at));
+          in.read(reinterpret_cast<char*>(raw), static_cast<std::streamsize>(p.bytes));
+          for (uint64_t b = 0; b < p.bytes; ++b)
+            items |= uint64_t{raw[bigEndian ? p.bytes - 1 - b : b]} << (8 * b);
+          if (p.signedCount && (items >> (8 * p.bytes - 1)) != 0)
+            throw SceneError(file, e.name + " " + std::to_string(i) + ": negative list length");
+        }
+        at = plus(at, plus(p.bytes, times(items, p.itemBytes)));
+        if (at > fileBytes) throw truncated();
+      }
+  }
+  if (at > fileBytes) throw SceneError(file, "binary body ends before its last element (truncated file?)");
+}
+
+}  // namespace
+
+PlyHeaderSummary checkPlyHeader(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw SceneError(file, std::string("cannot open: ") + std::strerror(errno));
+  std::string head(kMaxHeaderBytes, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  in.clear();  // the read above stops at the end of a short file, setting eofbit and failbit
+  in.seekg(0, std::ios::end);
+  const auto fileBytes = static_cast<uint64_t>(in.tellg());
+
+  PlyHeaderSummary summary;
+  std::vector<Element> elements;
+  bool haveFormat = false;
+  bool bigEndian = false;
+  std::size_t number = 0;
+  std::size_t offset = 0;
+  for (;;) {
+    const std::size_t eol = head.find('\n', offset);
+    if (eol == std::string::npos) {
+      if (head.size() == kMaxHeaderBytes) throw SceneError(file, "PLY header longer than 1 MiB (no end_header)");
+      throw SceneError(file, number + 1, "PLY header ends before end_header");
+    }
+    std::string_view line(head.data() + offset, eol - offset);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);  // CRLF headers exist
+    offset = eol + 1;
+    ++number;
+    const auto fail = [&](const std::string& reason) { throw SceneError(file, number, reason); };
+    const std::vector<std::string_view> w = words(line);
+    if (number == 1) {
+      if (w.size() != 1 || (w[0] != "ply" && w[0] != "PLY")) fail("not a PLY file (the first line is not 'ply')");
+      continue;
+    }
+    if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
+    if (w[0] == "end_header") break;
+    if (w[0] == "format") {
+      if (w.size() != 3) fail("format needs a kind and a version");
+      if (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian")
+        fail("unknown PLY format " + quoted(w[1]));
+      summary.binary = w[1] != "ascii";
+      bigEndian = w[1] == "binary_big_endian";
+      haveFormat = true;
+    } else if (w[0] == "element") {
+      if (w.size() != 3) fail("element needs a name and a count");
+      Element e;
+      e.name = std::string(w[1]);
+      e.line = number;
+      const auto [end, error] = std::from_chars(w[2].data(), w[2].data() + w[2].size(), e.count);
+      if (error != std::errc{} || end != w[2].data() + w[2].size()) fail("bad element count " + quoted(w[2]));
+      elements.push_back(e);
+    } else if (w[0] == "property") {
+      if (elements.empty()) fail("property before any element");
+      Element& e = elements.back();
+      const bool list = w.size() >= 2 && w[1] == "list";
+      if (list ? w.size() != 5 : w.size() != 3)
+        fail(list ? "a list property needs a count type, an item type and a name" : "property needs a type and a name");
+      const auto type = kTypeSizes.find(w[list ? 2 : 1]);
+      if (type == kTypeSizes.end()) fail("unknown property type " + quoted(w[list ? 2 : 1]));
+      if (list && kTypeSizes.find(w[3]) == kTypeSizes.end()) fail("unknown property type " + quoted(w[3]));
+      ++e.properties;
+      e.fixedBytes += type->second;
+      Property property{type->second, 0, false};
+      if (list) {
+        property.itemBytes = kTypeSizes.at(w[3]);
+        property.signedCount = w[2] == "char" || w[2] == "short" || w[2].starts_with("int");
+        if (property.bytes > 4) fail("list count type " + quoted(w[2]) + " is not an integer type");
+      }
+      e.layout.push_back(property);
+      if (!list) e.scalarNames.emplace_back(w[2]);
+    } else {
+      fail("unknown header keyword " + quoted(w[0]));
+    }
+  }
+  if (!haveFormat) throw SceneError(file, number, "PLY header has no format line");
+
+  // Each instance needs its fixed bytes (binary) or, in ASCII, a character
+  // and a separator for every property.
+  const uint64_t body = fileBytes - offset;
+  uint64_t needed = 0;
+  for (const Element& e : elements) {
+    if (e.count > 0 && e.properties == 0)
+      throw SceneError(file, e.line, "element '" + e.name + "' has instances but no properties");
+    needed = plus(needed, times(e.count, summary.binary ? e.fixedBytes : 2 * e.properties));
+    if (needed > body + 1)  // +1: the last ASCII line may lack its newline
+      throw SceneError(file, e.line,
+                       "element '" + e.name + "' declares " + std::to_string(e.count) + " instances, more than the " +
+                           std::to_string(body) + " bytes after the header can hold");
+    // A vertex without a position is no vertex (Assimp would make up zeros).
+    if (e.name == "vertex")
+      for (const char* axis : {"x", "y", "z"})
+        if (std::find(e.scalarNames.begin(), e.scalarNames.end(), axis) == e.scalarNames.end())
+          throw SceneError(file, e.line, std::string("element 'vertex' has no property ") + axis);
+    if (e.name == "vertex") summary.vertices = e.count;
+    if (e.name == "face" || e.name == "tristrips") summary.faces = plus(summary.faces, e.count);
+  }
+  if (summary.binary) {
+    in.clear();
+    checkBinaryBody(file, in, offset, fileBytes, bigEndian, elements);
+  }
+  return summary;
+}
+
+}  // namespace passtrace
