@@ -13,22 +13,8 @@
 #include <system_error>
 #include <vector>
 
-// The declarations only: scenes/gltf_loader.cpp compiles tinygltf, with these
-// switches.
-#define TINYGLTF_NO_STB_IMAGE
-#define TINYGLTF_NO_STB_IMAGE_WRITE
-#define TINYGLTF_NO_EXTERNAL_IMAGE
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#endif
-#include <tiny_gltf.h>
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
-
 #include "scenes/tessellate.h"
+#include "scenes/tinygltf_include.h"
 
 namespace passtrace {
 namespace fs = std::filesystem;
