@@ -136,15 +136,6 @@ void forEachChannel(const tinygltf::Model& model, const GltfFloatReader& read, F
 
 }  // namespace
 
-std::optional<TimeRange> gltfAnimationRange(const tinygltf::Model& model, const GltfFloatReader& read) {
-  std::optional<TimeRange> range;
-  forEachChannel(model, read, [&](const tinygltf::AnimationChannel&, const Sampler& s) {
-    const TimeRange r{s.times.front(), s.times.back()};
-    range = range ? TimeRange{std::min(range->start, r.start), std::max(range->end, r.end)} : r;
-  });
-  return range;
-}
-
 GltfPose evaluateGltfAnimations(const tinygltf::Model& model, float time, const GltfFloatReader& read) {
   const std::size_t n = model.nodes.size();
   GltfPose pose;
@@ -152,6 +143,8 @@ GltfPose evaluateGltfAnimations(const tinygltf::Model& model, float time, const 
   pose.targeted.assign(n, false);
   forEachChannel(model, read, [&](const tinygltf::AnimationChannel& c, const Sampler& s) {
     const std::size_t node = std::size_t(c.target_node);
+    const TimeRange keys{s.times.front(), s.times.back()};
+    pose.range = pose.range ? TimeRange{std::min(pose.range->start, keys.start), std::max(pose.range->end, keys.end)} : keys;
     const std::vector<float> v = sample(s, time, c.target_path == "rotation");
     pose.targeted[node] = true;
     if (c.target_path == "translation") pose.translation[node] = glm::vec3(v[0], v[1], v[2]);

@@ -37,10 +37,8 @@ struct GltfPose {
   std::vector<std::optional<glm::quat>> rotation;
   std::vector<std::optional<std::vector<float>>> weights;  // morph-target weights of the node's mesh
   std::vector<bool> targeted;                             // any channel targets the node
+  std::optional<TimeRange> range;  // the first and last key time over every sampler; none without animations
 };
-
-// The first and last key time over every sampler; none without animations.
-std::optional<TimeRange> gltfAnimationRange(const tinygltf::Model& model, const GltfFloatReader& read);
 
 GltfPose evaluateGltfAnimations(const tinygltf::Model& model, float time, const GltfFloatReader& read);
 

@@ -471,7 +471,7 @@ Scene GltfBuilder::build() {
     return floats(accessor, components, where);
   };
   pose_ = evaluateGltfAnimations(model_, time_, read);
-  scene_.animation = gltfAnimationRange(model_, read);
+  scene_.animation = pose_.range;
   std::vector<int> roots;
   if (!model_.scenes.empty()) {
     const int s = model_.defaultScene >= 0 ? model_.defaultScene : 0;

@@ -64,6 +64,8 @@ TEST_F(Frames, ErrorsLeaveNothing) {
   expectOneLineError(run("-s " + kGltf + "animated.gltf --frames 3 --time-start 2 --time-end 1 -r 1 -w 8 -o " +
                          path("f.png")), "start time");
   expectOneLineError(run("-s " + kGltf + "animated.gltf --frames 0 -r 1 -w 8"), "--frames");
+  expectOneLineError(run("-s " + kGltf + "animated.gltf --frames 3 --time-end inf -r 1 -w 8 -o " + path("f.png")),
+                     "--time");
 }
 
 }  // namespace
