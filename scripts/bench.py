@@ -437,6 +437,19 @@ def ensure_matplotlib():
     os.execv(system, [system, os.path.abspath(__file__)] + sys.argv[1:])
 
 
+def main_papay(args, argv):
+    """--papay: seed 003's experiments (scripts/bench_papay.py) into docs/bench-papay/."""
+    import bench_papay
+    out = pathlib.Path(args.out).resolve() if args.out else REPO / "docs" / "bench-papay"
+    binary = pathlib.Path(args.binary).resolve()
+    if not os.access(binary, os.X_OK):
+        raise SystemExit(f"bench: no passtrace binary at {binary} (bash scripts/setup.sh builds it)")
+    registry = passtrace_registry.load(binary)
+    bart = bart_dir(args.bart_dir)
+    command = shown_command(["python3", "scripts/bench.py"] + (argv if argv is not None else sys.argv[1:]))
+    return bench_papay.main(args, binary, registry, out, bart, bart_present(bart), sys.modules[__name__], command)
+
+
 def main(argv=None):
     if argv is None:
         ensure_matplotlib()
@@ -445,6 +458,9 @@ def main(argv=None):
     m.add_argument("--quick", dest="mode", action="store_const", const="quick", help="about 2-3 minutes at 512x512 (default)")
     m.add_argument("--full", dest="mode", action="store_const", const="full", help="the thesis's parameters")
     m.add_argument("--tiny", dest="mode", action="store_const", const="tiny", help="Cornell, 16x16: the plumbing test")
+    m.add_argument("--papay", dest="mode", action="store_const", const="papay",
+                   help="seed 003's experiments (scripts/bench_papay.py): kd traversals, binned builds, dynamic "
+                        "scenes -> docs/bench-papay/REPORT.md")
     parser.set_defaults(mode="quick")
     parser.add_argument("--binary", default=str(REPO / "build" / "passtrace"),
                         help="the passtrace to run; its --list --json gives the structures")
@@ -465,7 +481,11 @@ def main(argv=None):
     parser.add_argument("--timeout", type=int, help="seconds one passtrace run may take")
     parser.add_argument("--force", action="store_true", help="rerun runs that already finished")
     parser.add_argument("--report-only", action="store_true", help="write the report from finished runs, run nothing")
+    parser.add_argument("--frames", type=int, help="--papay: frames of each dynamic-scene run (default 30)")
+    parser.add_argument("--dynamic-size", type=int, help="--papay: image side of the dynamic-scene runs")
     args = parser.parse_args(argv)
+    if args.mode == "papay":
+        return main_papay(args, argv)
 
     if args.out:
         out = pathlib.Path(args.out)
