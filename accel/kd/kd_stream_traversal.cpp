@@ -19,19 +19,38 @@ void leafFinished(const KdStreamData& d, Cursor& c, const glm::vec4& leaf) {
     c.done = true;
     return;
   }
-  c.tMin = c.tMax;
-  c.tMax = c.sceneMax;
   if (d.variant == KdStreamVariant::Backtrack) {
+    c.tMin = c.tMax;
+    c.tMax = c.sceneMax;
     if (leaf.z < 0.0f) {
       c.done = true;
     } else {
       c.node = unpackIndex(leaf.z);
       c.mode = Cursor::kModeUp;
     }
-  } else {
-    c.node = 0;
-    c.mode = Cursor::kModeDown;
+    return;
   }
+  c.mode = Cursor::kModeDown;
+  if (c.count > 0) {  // pop the latest far child
+    c.top = (c.top + d.stackSize - 1) % d.stackSize;
+    --c.count;
+    const Cursor::Entry& e = c.stack[c.top];
+    c.node = e.node;
+    c.tMin = e.tMin;
+    c.tMax = e.tMax;
+    return;
+  }
+  // Restart: descend again over what is left of the ray.
+  c.tMin = c.tMax;
+  c.tMax = c.sceneMax;
+  c.node = c.root;
+  c.pushDown = true;
+}
+
+void push(const KdStreamData& d, Cursor& c, const Cursor::Entry& e) {
+  c.stack[c.top] = e;  // on a full stack this slot held the oldest entry
+  c.top = (c.top + 1) % d.stackSize;
+  c.count = std::min(c.count + 1, d.stackSize);
 }
 
 void step(const KdStreamData& d, const Ray& ray, const glm::vec3& invDir, bool anyHit, Cursor& c) {
@@ -81,10 +100,15 @@ void step(const KdStreamData& d, const Ray& ray, const glm::vec3& invDir, bool a
       c.node = first;
     } else if (tSplit <= c.tMin) {
       c.node = second;
-    } else {
+    } else {  // both children: the near one now, the far one later
+      // The far child's interval ends at the old tMax (the digest's Algorithm 1 fix).
+      if (kdHasStack(d.variant)) push(d, c, {second, tSplit, c.tMax});
+      c.pushDown = false;
       c.node = first;
       c.tMax = tSplit;
     }
+    // The ray's rest lies in this child's voxel: later restarts can begin here.
+    if (kdRestartsFromPushDownRoot(d.variant) && c.pushDown) c.root = c.node;
   } else if (node.w >= 0.0f) {  // leaf with triangles
     c.mode = node.w;
   } else {  // empty leaf
@@ -103,6 +127,7 @@ KdStreamCursor kdStreamStart(const KdStreamData& d, const Ray& ray) {
   c.tMax = std::min(tFar, ray.tMax);
   c.sceneMax = c.tMax;
   c.done = !(inside && c.tMin <= c.tMax) || d.nodes.empty();
+  if (kdHasStack(d.variant)) c.stack.resize(d.stackSize);
   return c;
 }
 
