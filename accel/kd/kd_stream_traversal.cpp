@@ -31,10 +31,8 @@ void leafFinished(const KdStreamData& d, Cursor& c, const glm::vec4& leaf) {
     return;
   }
   c.mode = Cursor::kModeDown;
-  if (c.count > 0) {  // pop the latest far child
-    c.top = (c.top + d.stackSize - 1) % d.stackSize;
-    --c.count;
-    const Cursor::Entry& e = c.stack[c.top];
+  if (!c.stack.empty()) {  // pop the latest far child
+    const KdCircularStack::Entry e = c.stack.pop();
     c.node = e.node;
     c.tMin = e.tMin;
     c.tMax = e.tMax;
@@ -47,11 +45,6 @@ void leafFinished(const KdStreamData& d, Cursor& c, const glm::vec4& leaf) {
   c.pushDown = true;
 }
 
-void push(const KdStreamData& d, Cursor& c, const Cursor::Entry& e) {
-  c.stack[c.top] = e;  // on a full stack this slot held the oldest entry
-  c.top = (c.top + 1) % d.stackSize;
-  c.count = std::min(c.count + 1, d.stackSize);
-}
 
 void step(const KdStreamData& d, const Ray& ray, const glm::vec3& invDir, bool anyHit, Cursor& c) {
   ++c.stats.steps;
@@ -102,7 +95,7 @@ void step(const KdStreamData& d, const Ray& ray, const glm::vec3& invDir, bool a
       c.node = second;
     } else {  // both children: the near one now, the far one later
       // The far child's interval ends at the old tMax (the digest's Algorithm 1 fix).
-      if (kdHasStack(d.variant)) push(d, c, {second, tSplit, c.tMax});
+      if (kdHasStack(d.variant)) c.stack.push({second, tSplit, c.tMax});
       c.pushDown = false;
       c.node = first;
       c.tMax = tSplit;
@@ -127,7 +120,7 @@ KdStreamCursor kdStreamStart(const KdStreamData& d, const Ray& ray) {
   c.tMax = std::min(tFar, ray.tMax);
   c.sceneMax = c.tMax;
   c.done = !(inside && c.tMin <= c.tMax) || d.nodes.empty();
-  if (kdHasStack(d.variant)) c.stack.resize(d.stackSize);
+  if (kdHasStack(d.variant)) c.stack = KdCircularStack(d.stackSize);
   return c;
 }
 

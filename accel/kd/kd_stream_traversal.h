@@ -55,6 +55,34 @@ struct KdStreamData {
   uint32_t stackSize = 0;  // stack entries of the stack variants (>= 1 for them)
 };
 
+// The stack variants' stack, as kd_ray_record.glsl keeps it: `size` slots
+// used circularly, so a push onto a full stack overwrites the oldest entry.
+struct KdCircularStack {
+  struct Entry {
+    uint32_t node;
+    float tMin, tMax;  // the far child's interval: from the split to the old tMax
+  };
+  std::vector<Entry> slots;
+  uint32_t top = 0;    // the slot the next push writes
+  uint32_t count = 0;  // live entries, <= slots.size()
+
+  explicit KdCircularStack(uint32_t size = 0) : slots(size) {}
+  bool empty() const { return count == 0; }
+  void push(const Entry& e) {
+    const uint32_t size = uint32_t(slots.size());
+    slots[top] = e;
+    top = (top + 1) % size;
+    count = count < size ? count + 1 : size;
+  }
+  // The latest entry; the stack must not be empty.
+  Entry pop() {
+    const uint32_t size = uint32_t(slots.size());
+    top = (top + size - 1) % size;
+    --count;
+    return slots[top];
+  }
+};
+
 // A ray's traversal state between passes (the kernel's state and aux surfaces).
 struct KdStreamCursor {
   static constexpr float kModeDown = -1.0f, kModeUp = -2.0f;
@@ -67,12 +95,7 @@ struct KdStreamCursor {
   // The kernel's storage-buffer record (kd_ray_record.glsl).
   uint32_t root = 0;      // where a restart descends from
   bool pushDown = true;   // no node with both children to visit met in this descent
-  struct Entry {
-    uint32_t node;
-    float tMin, tMax;
-  };
-  std::vector<Entry> stack;  // stackSize slots, used circularly
-  uint32_t top = 0, count = 0;
+  KdCircularStack stack;  // the stack variants' far children
 };
 
 // kd_init.frag: clips the ray to the scene box; done if it misses.
