@@ -36,6 +36,7 @@ struct AccelBuildConfig {
   float gridMultiplier = 1.0f;  // -g: scales the uniform grid's resolution
   int kdMinElements = 2;      // -e: fewest triangles for a kd-tree internal node
   int kdMaxDepth = 0;         // -d: kd-tree maximum depth; 0 = 8 + 1.3 log2 N
+  int kdStackSize = 4;        // --stack-size: kd short-stack entries, 1-8
   // --triangle-test: used by every traversal, CPU and GPU (not a build
   // parameter, but every structure is made from this config).
   TriangleTest triangleTest = TriangleTest::MollerTrumbore;

@@ -73,6 +73,40 @@ std::vector<Structure> makeRows() {
        .renderers = {Cpu, Gpu}, .number = 3, .numberedOn = {Gpu},
        .cpu = makeKdBacktrackMirror, .stream = makeKdBacktrackStream, .mirror = makeKdBacktrackMirror,
        .memory = {498, 536}, .reads = {P::KdMinElements, P::KdMaxDepth}},
+      // Seed 003 ch. 6 (Horn et al. 2007), over kd-restart's tree and texels.
+      // Memory measured for kd-pushdown and kd-stack (both 416 / 383; kd-restart
+      // measured 416 / 383 in the same session); the short stacks hold the same
+      // data plus a record of 4 + 3K floats per pixel.
+      {.name = "kd-pushdown", .family = "kd",
+       .description = "kd-tree, restart from the push-down root (Horn et al.); on the CPU the kernel's algorithm",
+       .renderers = {Cpu, Gpu}, .number = std::nullopt, .numberedOn = {},
+       .cpu = makeKdStreamMirror<KdStreamVariant::PushDown>,
+       .stream = makeKdStream<KdStreamVariant::PushDown>,
+       .mirror = makeKdStreamMirror<KdStreamVariant::PushDown>,
+       .memory = {416, 383}, .reads = {P::KdMinElements, P::KdMaxDepth}},
+      {.name = "kd-shortstack", .family = "kd",
+       .description = "kd-tree, circular short stack (--stack-size), restart when empty; on the CPU the kernel's "
+                      "algorithm",
+       .renderers = {Cpu, Gpu}, .number = std::nullopt, .numberedOn = {},
+       .cpu = makeKdStreamMirror<KdStreamVariant::ShortStack>,
+       .stream = makeKdStream<KdStreamVariant::ShortStack>,
+       .mirror = makeKdStreamMirror<KdStreamVariant::ShortStack>,
+       .memory = {416, 383}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdStackSize}},
+      {.name = "kd-pushdown-shortstack", .family = "kd",
+       .description = "kd-tree, short stack restarting from the push-down root; on the CPU the kernel's algorithm",
+       .renderers = {Cpu, Gpu}, .number = std::nullopt, .numberedOn = {},
+       .cpu = makeKdStreamMirror<KdStreamVariant::PushDownShortStack>,
+       .stream = makeKdStream<KdStreamVariant::PushDownShortStack>,
+       .mirror = makeKdStreamMirror<KdStreamVariant::PushDownShortStack>,
+       .memory = {416, 383}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdStackSize}},
+      {.name = "kd-stack", .family = "kd",
+       .description = "kd-tree, full stack (as deep as the tree) in a per-ray storage buffer; on the CPU the "
+                      "kernel's algorithm",
+       .renderers = {Cpu, Gpu}, .number = std::nullopt, .numberedOn = {},
+       .cpu = makeKdStreamMirror<KdStreamVariant::Stack>,
+       .stream = makeKdStream<KdStreamVariant::Stack>,
+       .mirror = makeKdStreamMirror<KdStreamVariant::Stack>,
+       .memory = {416, 383}, .reads = {P::KdMinElements, P::KdMaxDepth}},
       {.name = "grid-stream", .family = "grid",
        .description = "the GPU uniform-grid kernel's algorithm over its texels, on the CPU",
        .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
@@ -124,6 +158,7 @@ std::string_view buildParamFlag(BuildParam param) {
     case P::LoopLimit: return "-l/--loop-limit";
     case P::PageTexels: return "--page-texels";
     case P::TriangleTest: return "--triangle-test";
+    case P::KdStackSize: return "--stack-size";
   }
   return "?";
 }
@@ -147,6 +182,7 @@ std::string buildParamDefault(BuildParam param) {
     case P::LoopLimit: return number(gpu.loopLimit);
     case P::PageTexels: return gpu.maxPageTexels == 0 ? "0 = the largest texture" : number(double(gpu.maxPageTexels));
     case P::TriangleTest: return kTriangleTestNames[int(cpu.triangleTest)];
+    case P::KdStackSize: return number(cpu.kdStackSize);
   }
   return "?";
 }

@@ -75,6 +75,10 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
       ->capture_default_str();
   app.add_option("-l,--loop-limit", o.loopLimit, "GPU traversal steps per ray per pass")
       ->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  app.add_option("--stack-size", o.stackSize,
+                 "kd-shortstack, kd-pushdown-shortstack: entries of the circular stack (the oldest is dropped "
+                 "when full)")
+      ->check(CLI::Range(1, 8))->capture_default_str();
   app.add_option("-c,--swap-children", o.swapChildren, "K/K BVH: children swapped with probability 0.5 c")
       ->check(CLI::Range(0, 2))->capture_default_str();
   app.add_option("--threads", o.threads, "CPU renderer threads (0: all cores)")
@@ -148,7 +152,7 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
   o.listJson = o.list && app.count("--json") > 0;
   o.accelGiven = app.count("--accel") > 0;
   for (const char* flag : {"--swap-children", "--gs-tries", "--grid-multiplier", "--kd-min-elements", "--kd-max-depth",
-                           "--grid-kernels", "--loop-limit", "--page-texels", "--triangle-test"})
+                           "--grid-kernels", "--loop-limit", "--page-texels", "--triangle-test", "--stack-size"})
     if (app.count(flag)) o.givenFlags.emplace_back(flag);
   return 0;
 }

@@ -24,6 +24,7 @@ RunSettings toRunSettings(const Options& o) {
   build.gridMultiplier = o.gridMultiplier;
   build.kdMinElements = o.kdMinElements;
   build.kdMaxDepth = o.kdMaxDepth;
+  build.kdStackSize = o.stackSize;
   build.triangleTest = *triangleTestByName(o.triangleTest);  // the parser accepts only valid names
   s.gpu.loopLimit = o.loopLimit;
   s.gpu.gridKernels = o.gridKernels == "split" ? GridKernels::Split : GridKernels::Merged;
@@ -43,7 +44,7 @@ RunSettings toRunSettings(const Options& o) {
       {"--grid-multiplier", BuildParam::GridMultiplier}, {"--kd-min-elements", BuildParam::KdMinElements},
       {"--kd-max-depth", BuildParam::KdMaxDepth},     {"--grid-kernels", BuildParam::GridKernels},
       {"--loop-limit", BuildParam::LoopLimit},        {"--page-texels", BuildParam::PageTexels},
-      {"--triangle-test", BuildParam::TriangleTest}};
+      {"--triangle-test", BuildParam::TriangleTest},  {"--stack-size", BuildParam::KdStackSize}};
   for (const std::string& flag : o.givenFlags) s.givenParams.push_back(kFlags.at(flag));
   s.stats = o.stats;
   return s;

@@ -4,6 +4,8 @@
 //   TEST_SLAB:     out.x = intersectsBox(origin in0, invDir of in1, lo in2, hi in3, tBest in3.w)
 //   TEST_TRIANGLE: out = the hit after intersectTriangle(origin in0, dir in1, a in2, b in3, c in4, id in4.w)
 //                  from a hit record (tBest in1.w, 0, 0, -1)
+//   TEST_STORAGE:  storage[element index] += element index + 1; out.x = the sum so far (a pass's
+//                  writes must reach the next pass)
 #include "texel_address.glsl"
 #include "intersect.glsl"
 
@@ -14,6 +16,9 @@ uniform sampler2D uIn2;
 uniform sampler2D uIn3;
 uniform sampler2D uIn4;
 uniform int uWidth;
+#ifdef TEST_STORAGE
+layout(std430, binding = 0) buffer TestStorage { float storage[]; };
+#endif
 
 layout(location = 0) out vec4 outResult;
 
@@ -31,5 +36,9 @@ void main() {
   vec4 hit = vec4(dir.w, 0.0, 0.0, -1.0);
   intersectTriangle(readElement(uIn0).xyz, dir.xyz, readElement(uIn2).xyz, readElement(uIn3).xyz, c.xyz, c.w, hit);
   outResult = hit;
+#elif defined(TEST_STORAGE)
+  uint index = uint(gl_FragCoord.y) * uint(uWidth) + uint(gl_FragCoord.x);
+  storage[index] += float(index + 1u);
+  outResult = vec4(storage[index], 0.0, 0.0, 0.0);
 #endif
 }

@@ -1,5 +1,6 @@
 #include "render/cpu_renderer.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 
@@ -72,6 +73,8 @@ FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height,
     result.rgb.insert(result.rgb.end(), {p.color.r, p.color.g, p.color.b});
     result.stats.steps += p.steps;
     result.stats.triangleTests += p.triangleTests;
+    result.stats.maxStepsPerRay = std::max<uint64_t>(result.stats.maxStepsPerRay, p.steps);
+    result.stats.maxTriangleTestsPerRay = std::max<uint64_t>(result.stats.maxTriangleTestsPerRay, p.triangleTests);
   }
   return result;
 }

@@ -14,6 +14,11 @@ struct FrameStats {
   uint64_t passes = 0;         // traversal passes (GPU); bounces traced (CPU)
   uint64_t steps = 0;          // traversal steps of all rays
   uint64_t triangleTests = 0;  // triangle tests of all rays
+  // The most of any one pixel (stream element) over all its rays in the frame
+  // (its primary ray and the shadow and reflection rays that follow it; with
+  // -b 1 exactly its primary ray): the same counts the heat map shows.
+  uint64_t maxStepsPerRay = 0;
+  uint64_t maxTriangleTestsPerRay = 0;
   double frameMs = 0;          // ray generation through the last shading pass
 };
 

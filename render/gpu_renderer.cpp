@@ -1,5 +1,6 @@
 #include "render/gpu_renderer.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "render/camera.h"
@@ -95,8 +96,12 @@ FrameResult GpuRenderer::render(const CameraSpec& camera, int bounces, bool capt
   for (const glm::vec4& t : rays_.read(kThroughputSurface)) {
     result.steps.push_back(t.w);
     result.stats.steps += uint64_t(t.w);
+    result.stats.maxStepsPerRay = std::max(result.stats.maxStepsPerRay, uint64_t(t.w));
   }
-  for (const glm::vec4& p : rays_.read(kPendingSurface)) result.stats.triangleTests += uint64_t(p.w);
+  for (const glm::vec4& p : rays_.read(kPendingSurface)) {
+    result.stats.triangleTests += uint64_t(p.w);
+    result.stats.maxTriangleTestsPerRay = std::max(result.stats.maxTriangleTestsPerRay, uint64_t(p.w));
+  }
   rays_.disable();
   return result;
 }

@@ -46,6 +46,8 @@ nlohmann::json toJson(const RunReport& r) {
       {"passes", r.passes},
       {"steps_per_ray", r.stepsPerRay},
       {"triangle_tests_per_ray", r.triangleTestsPerRay},
+      {"max_steps_per_ray", r.maxStepsPerRay},
+      {"max_triangle_tests_per_ray", r.maxTriangleTestsPerRay},
       {"accel_floats_per_triangle", r.structure.floatsPerTriangle},
       {"accel_nodes", r.structure.nodes},
       {"accel_leaves", r.structure.leaves},
@@ -86,6 +88,9 @@ std::string summaryText(const RunReport& r, bool withStats) {
     text += format("structure: %s, %zu nodes, %zu leaves, %zu triangle references, depth %u, %.2f floats/triangle\n",
                    s.name.c_str(), s.nodes, s.leaves, s.references, s.depth, s.floatsPerTriangle);
     text += format("per ray: %.2f traversal steps, %.2f triangle tests\n", r.stepsPerRay, r.triangleTestsPerRay);
+    text += format("max per pixel (all its rays): %llu traversal steps, %llu triangle tests\n",
+                   static_cast<unsigned long long>(r.maxStepsPerRay),
+                   static_cast<unsigned long long>(r.maxTriangleTestsPerRay));
   }
   text += format("%s: %zu triangles; %s renderer, %s (build %.1f ms, %.2f floats/triangle)%s%s\n", r.scene.c_str(),
                  r.triangles, r.renderer.c_str(), s.name.c_str(), s.buildMs, s.floatsPerTriangle,

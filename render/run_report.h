@@ -46,6 +46,8 @@ struct RunReport {
   // Means over the angles of each angle's fastest repeat.
   double rays = 0, frameMs = 0, mraysPerS = 0, passes = 0, steps = 0, triangleTests = 0;
   double stepsPerRay = 0, triangleTestsPerRay = 0;
+  // The most of one pixel's rays over the frames (FrameStats::maxStepsPerRay).
+  uint64_t maxStepsPerRay = 0, maxTriangleTestsPerRay = 0;
   std::optional<std::string> glRenderer, glBackend;  // GL runs only
   std::vector<FrameReport> frames;
   std::vector<SequenceFrame> sequence;  // --frames: one entry per frame of the sequence

@@ -226,6 +226,8 @@ RunReport renderSequence(const RunSettings& o, Progress& progress) {
       report.structure = stats;
       sumMs += best.stats.frameMs, sumRays += double(best.stats.rays), sumPasses += double(best.stats.passes);
       sumSteps += double(best.stats.steps), sumTests += double(best.stats.triangleTests);
+      report.maxStepsPerRay = std::max(report.maxStepsPerRay, best.stats.maxStepsPerRay);
+      report.maxTriangleTestsPerRay = std::max(report.maxTriangleTestsPerRay, best.stats.maxTriangleTestsPerRay);
     }
     progress.finish();
     const double n = double(o.frames);
@@ -303,6 +305,8 @@ RunReport runSession(const RunSettings& o, Progress& progress) {
     total.passes += best.stats.passes;
     total.steps += best.stats.steps;
     total.triangleTests += best.stats.triangleTests;
+    total.maxStepsPerRay = std::max(total.maxStepsPerRay, best.stats.maxStepsPerRay);
+    total.maxTriangleTestsPerRay = std::max(total.maxTriangleTestsPerRay, best.stats.maxTriangleTestsPerRay);
     if (k == 0) {
       first.width = best.width, first.height = best.height, first.rgb = best.rgb, first.stats = best.stats;
       first.steps = best.steps;
@@ -325,6 +329,8 @@ RunReport runSession(const RunSettings& o, Progress& progress) {
   report.triangleTests = double(total.triangleTests) / n;
   report.stepsPerRay = sumRays > 0 ? double(total.steps) / sumRays : 0.0;
   report.triangleTestsPerRay = sumRays > 0 ? double(total.triangleTests) / sumRays : 0.0;
+  report.maxStepsPerRay = total.maxStepsPerRay;
+  report.maxTriangleTestsPerRay = total.maxTriangleTestsPerRay;
 
   if (!o.output.empty()) writeImage(o.output, first.width, first.height, first.rgb);
   if (!o.hits.empty()) {

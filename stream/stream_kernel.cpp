@@ -6,6 +6,7 @@
 #include "stream/gl_error.h"
 #include "stream/gl_program.h"
 #include "stream/inout_stream.h"
+#include "stream/storage_buffer.h"
 
 namespace passtrace {
 
@@ -74,9 +75,12 @@ void StreamKernel::bindInput(const char* sampler, const InOutStream& stream, int
   bindTexture(sampler, stream.surfaceTexture(surface));
 }
 
+void StreamKernel::bindStorage(GLuint binding, const StorageBuffer& buffer) { storage_[binding] = &buffer; }
+
 uint64_t StreamKernel::execute(bool countFragments) {
   glUseProgram(program_);
   for (const auto& [sampler, binding] : textures_) glBindTextureUnit(binding.first, binding.second);
+  for (const auto& [binding, buffer] : storage_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer->buffer());
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   // The cull kernel only retires elements; it must leave every surface as it is.
@@ -89,6 +93,9 @@ uint64_t StreamKernel::execute(bool countFragments) {
   if (countFragments) glEndQuery(GL_SAMPLES_PASSED);
   // Later passes read what this one wrote, possibly from the same surfaces.
   glTextureBarrier();
+  // Storage-buffer writes are incoherent: without this barrier the next pass
+  // may read a stale stack.
+  if (!storage_.empty()) glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   GLuint64 count = 0;
   if (countFragments) glGetQueryObjectui64v(query_, GL_QUERY_RESULT, &count);
   checkGlError("executing kernel " + name_);

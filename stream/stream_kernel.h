@@ -19,6 +19,7 @@ namespace passtrace {
 
 class ConstInputStream;
 class InOutStream;
+class StorageBuffer;
 
 class StreamKernel {
  public:
@@ -50,6 +51,10 @@ class StreamKernel {
   // data, or a sampler2D uniform to one surface of a stream.
   void bindInput(const char* name, const ConstInputStream& stream);
   void bindInput(const char* sampler, const InOutStream& stream, int surface);
+  // Attaches a storage buffer to the kernel's `layout(binding = binding)`
+  // buffer block; kept until bound again. The buffer must outlive the kernel's
+  // executions.
+  void bindStorage(GLuint binding, const StorageBuffer& buffer);
 
   uint64_t execute(bool countFragments = false);
 
@@ -64,6 +69,7 @@ class StreamKernel {
   GLuint vertexArray_ = 0;
   std::map<std::string, GLint> locations_;
   std::map<std::string, std::pair<GLuint, GLuint>> textures_;  // sampler -> (unit, texture)
+  std::map<GLuint, const StorageBuffer*> storage_;             // binding point -> buffer
 };
 
 }  // namespace passtrace

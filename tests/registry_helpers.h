@@ -25,7 +25,8 @@ inline std::unique_ptr<CpuAccelerator> cpuStructure(int number, std::span<const 
 namespace passtrace::testing_registry {
 
 // Every structure on every ray tracer, as (renderer id, "-a" argument and its
-// variant flags): the GPU rows that read --grid-kernels once per kernel set.
+// variant flags): the GPU rows that read --grid-kernels once per kernel set,
+// the rows that read --stack-size also with 1 and 8 entries (4 is the default).
 inline std::vector<std::pair<int, std::string>> everyStructureRun() {
   std::vector<std::pair<int, std::string>> runs;
   for (RendererId r : {RendererId::Gpu, RendererId::Cpu, RendererId::Embree})
@@ -35,8 +36,19 @@ inline std::vector<std::pair<int, std::string>> everyStructureRun() {
       const auto reads = s.readsOn(r);
       if (std::find(reads.begin(), reads.end(), BuildParam::GridKernels) != reads.end())
         runs.emplace_back(int(r), std::string(s.name) + " --grid-kernels split");
+      if (std::find(reads.begin(), reads.end(), BuildParam::KdStackSize) != reads.end())
+        for (const char* k : {"1", "8"}) runs.emplace_back(int(r), std::string(s.name) + " --stack-size " + k);
     }
   return runs;
+}
+
+// The loop limits (-l) a command-line test runs `run` (an everyStructureRun
+// entry) with: 3 and 64 for the GPU kd rows, whose state (stacks included)
+// must survive a pass ending anywhere; else only the default (empty flag).
+inline std::vector<std::string> loopLimitFlags(const std::pair<int, std::string>& run) {
+  const Structure* s = findStructure(run.second.substr(0, run.second.find(' ')));
+  if (run.first == int(RendererId::Gpu) && s && s->family == "kd") return {" -l 3", " -l 64"};
+  return {""};
 }
 
 }  // namespace passtrace::testing_registry

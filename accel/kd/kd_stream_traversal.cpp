@@ -19,20 +19,32 @@ void leafFinished(const KdStreamData& d, Cursor& c, const glm::vec4& leaf) {
     c.done = true;
     return;
   }
-  c.tMin = c.tMax;
-  c.tMax = c.sceneMax;
   if (d.variant == KdStreamVariant::Backtrack) {
+    c.tMin = c.tMax;
+    c.tMax = c.sceneMax;
     if (leaf.z < 0.0f) {
       c.done = true;
     } else {
       c.node = unpackIndex(leaf.z);
       c.mode = Cursor::kModeUp;
     }
-  } else {
-    c.node = 0;
-    c.mode = Cursor::kModeDown;
+    return;
   }
+  c.mode = Cursor::kModeDown;
+  if (!c.stack.empty()) {  // pop the latest far child
+    const KdCircularStack::Entry e = c.stack.pop();
+    c.node = e.node;
+    c.tMin = e.tMin;
+    c.tMax = e.tMax;
+    return;
+  }
+  // Restart: descend again over what is left of the ray.
+  c.tMin = c.tMax;
+  c.tMax = c.sceneMax;
+  c.node = c.root;
+  c.pushDown = true;
 }
+
 
 void step(const KdStreamData& d, const Ray& ray, const glm::vec3& invDir, bool anyHit, Cursor& c) {
   ++c.stats.steps;
@@ -81,10 +93,15 @@ void step(const KdStreamData& d, const Ray& ray, const glm::vec3& invDir, bool a
       c.node = first;
     } else if (tSplit <= c.tMin) {
       c.node = second;
-    } else {
+    } else {  // both children: the near one now, the far one later
+      // The far child's interval ends at the old tMax (the digest's Algorithm 1 fix).
+      if (kdHasStack(d.variant)) c.stack.push({second, tSplit, c.tMax});
+      c.pushDown = false;
       c.node = first;
       c.tMax = tSplit;
     }
+    // The ray's rest lies in this child's voxel: later restarts can begin here.
+    if (kdRestartsFromPushDownRoot(d.variant) && c.pushDown) c.root = c.node;
   } else if (node.w >= 0.0f) {  // leaf with triangles
     c.mode = node.w;
   } else {  // empty leaf
@@ -103,6 +120,7 @@ KdStreamCursor kdStreamStart(const KdStreamData& d, const Ray& ray) {
   c.tMax = std::min(tFar, ray.tMax);
   c.sceneMax = c.tMax;
   c.done = !(inside && c.tMin <= c.tMax) || d.nodes.empty();
+  if (kdHasStack(d.variant)) c.stack = KdCircularStack(d.stackSize);
   return c;
 }
 

@@ -1,6 +1,8 @@
 #pragma once
-// kd-restart and kd-backtrack (Foley & Sugerman, thesis 8.2-8.5) on the CPU,
-// step for step as kernels_glsl/kd/kd_traversal.glsl runs them on the GPU, over
+// kd-restart and kd-backtrack (Foley & Sugerman, thesis 8.2-8.5), and
+// kd-pushdown, kd-shortstack, kd-pushdown-shortstack and kd-stack (Horn et al.
+// 2007, seed 003 ch. 6) on the CPU, step for step as
+// kernels_glsl/kd/kd_traversal.glsl runs them on the GPU, over
 // the same texels (accel/kd/kd_texels.h). They exist to debug the kernels: the
 // GPU and the CPU must find the same hits and count the same steps.
 //
@@ -15,6 +17,7 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -24,7 +27,23 @@
 
 namespace passtrace {
 
-enum class KdStreamVariant { Restart, Backtrack };
+// Restart: after a leaf without a hit, descend again from the root over the
+//   rest of the ray. PushDown: from the push-down root instead, the deepest
+//   node entered while the descent met no node with both children to visit.
+// ShortStack: a circular stack of stackSize far children (node, tMin, tMax);
+//   a push onto a full stack drops the oldest entry, an empty stack restarts
+//   from the root. PushDownShortStack: restarts from the push-down root.
+// Stack: a stack as deep as the tree, which never overflows.
+enum class KdStreamVariant { Restart, Backtrack, PushDown, ShortStack, PushDownShortStack, Stack };
+
+inline bool kdRestartsFromPushDownRoot(KdStreamVariant v) {
+  return v == KdStreamVariant::PushDown || v == KdStreamVariant::PushDownShortStack;
+}
+inline bool kdHasStack(KdStreamVariant v) {
+  return v == KdStreamVariant::ShortStack || v == KdStreamVariant::PushDownShortStack || v == KdStreamVariant::Stack;
+}
+// Whether the kernel keeps a per-ray record in a storage buffer (kd_ray_record.glsl).
+inline bool kdHasRayRecord(KdStreamVariant v) { return kdRestartsFromPushDownRoot(v) || kdHasStack(v); }
 
 // The data the kernel reads: node texels (1 per node for restart, 3 for
 // backtrack), reference-list texels and triangle texels (3 per triangle).
@@ -33,6 +52,35 @@ struct KdStreamData {
   Aabb sceneBox;
   std::span<const glm::vec4> nodes, lists, triangles;
   TriangleTest triangleTest = TriangleTest::MollerTrumbore;  // as the kernel is compiled
+  uint32_t stackSize = 0;  // stack entries of the stack variants (>= 1 for them)
+};
+
+// The stack variants' stack, as kd_ray_record.glsl keeps it: `size` slots
+// used circularly, so a push onto a full stack overwrites the oldest entry.
+struct KdCircularStack {
+  struct Entry {
+    uint32_t node;
+    float tMin, tMax;  // the far child's interval: from the split to the old tMax
+  };
+  std::vector<Entry> slots;
+  uint32_t top = 0;    // the slot the next push writes
+  uint32_t count = 0;  // live entries, <= slots.size()
+
+  explicit KdCircularStack(uint32_t size = 0) : slots(size) {}
+  bool empty() const { return count == 0; }
+  void push(const Entry& e) {
+    const uint32_t size = uint32_t(slots.size());
+    slots[top] = e;
+    top = (top + 1) % size;
+    count = count < size ? count + 1 : size;
+  }
+  // The latest entry; the stack must not be empty.
+  Entry pop() {
+    const uint32_t size = uint32_t(slots.size());
+    top = (top + size - 1) % size;
+    --count;
+    return slots[top];
+  }
 };
 
 // A ray's traversal state between passes (the kernel's state and aux surfaces).
@@ -44,6 +92,10 @@ struct KdStreamCursor {
   Hit best;
   RayStats stats;
   bool done = false;
+  // The kernel's storage-buffer record (kd_ray_record.glsl).
+  uint32_t root = 0;      // where a restart descends from
+  bool pushDown = true;   // no node with both children to visit met in this descent
+  KdCircularStack stack;  // the stack variants' far children
 };
 
 // kd_init.frag: clips the ray to the scene box; done if it misses.

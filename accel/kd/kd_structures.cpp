@@ -1,6 +1,8 @@
 #include "accel/kd/kd_structures.h"
 
+#include <algorithm>
 #include <chrono>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -12,6 +14,18 @@
 
 namespace passtrace {
 namespace {
+
+const char* kdStreamName(KdStreamVariant variant) {
+  switch (variant) {
+    case KdStreamVariant::Restart: return "kd-restart";
+    case KdStreamVariant::Backtrack: return "kd-backtrack";
+    case KdStreamVariant::PushDown: return "kd-pushdown";
+    case KdStreamVariant::ShortStack: return "kd-shortstack";
+    case KdStreamVariant::PushDownShortStack: return "kd-pushdown-shortstack";
+    case KdStreamVariant::Stack: return "kd-stack";
+  }
+  return "?";
+}
 
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -50,7 +64,7 @@ class KdStreamMirror final : public CpuAccelerator {
   KdStreamMirror(KdStreamVariant variant, std::span<const Triangle> tris, const AccelBuildConfig& config)
       : triangles_(triangleVertexTexels(tris)), build_(buildKdStream(variant, tris, config)) {
     data_ = KdStreamData{variant, build_.sceneBox, build_.texels.nodes, build_.texels.lists, triangles_,
-                         config.triangleTest};
+                         config.triangleTest, build_.stackSize};
   }
   Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
     return traverseKdStream(data_, ray, anyHit, stats);
@@ -68,7 +82,7 @@ std::unique_ptr<GpuTraversal> makeStream(KdStreamVariant variant, std::span<cons
                                          const GpuTraversalConfig& config) {
   KdStreamBuild build = buildKdStream(variant, tris, config.build);
   return std::make_unique<GpuKdTraversal>(variant, build.texels, build.sceneBox, triangleVertexTexels(tris),
-                                          build.maxStepsPerRay, std::move(build.stats), config);
+                                          build.maxStepsPerRay, build.stackSize, std::move(build.stats), config);
 }
 
 }  // namespace
@@ -89,11 +103,11 @@ KdBuildConfig kdPbrtConfigFor(const AccelBuildConfig& config) {
 KdStreamBuild buildKdStream(KdStreamVariant variant, std::span<const Triangle> tris, const AccelBuildConfig& config) {
   const auto start = std::chrono::steady_clock::now();
   const KdTree tree = buildKdTree(tris, kdConfigFor(config));
-  KdStreamBuild build{variant == KdStreamVariant::Restart ? flattenKdRestart(tree, tris.size())
-                                                          : flattenKdBacktrack(tree, tris.size()),
+  KdStreamBuild build{variant == KdStreamVariant::Backtrack ? flattenKdBacktrack(tree, tris.size())
+                                                            : flattenKdRestart(tree, tris.size()),
                       tree.bounds, AccelStats{}, 0};
   AccelStats& s = build.stats;
-  s.name = variant == KdStreamVariant::Restart ? "kd-restart" : "kd-backtrack";
+  s.name = kdStreamName(variant);
   s.buildMs = millisecondsSince(start);
   s.floatsPerTriangle = build.texels.floatsPerTriangle;
   s.nodes = tree.nodes.size();
@@ -101,7 +115,17 @@ KdStreamBuild buildKdStream(KdStreamVariant variant, std::span<const Triangle> t
   s.references = tree.references.size();
   s.depth = tree.depth();
   // Each leaf is searched at most once (plus a re-entry per backtrack), reached through at most depth nodes.
+  // Push-down takes a subset of restart's steps; a stack pop or restart
+  // reaches a leaf through at most depth nodes like a restart does.
   build.maxStepsPerRay = 2 * (uint64_t(s.leaves) + 1) * (s.depth + 2) + 2 * s.nodes + build.texels.listEntries;
+  if (variant == KdStreamVariant::Stack) {
+    // A path holds depth - 1 internal nodes, each pushing at most one entry.
+    build.stackSize = std::max<uint32_t>(1, s.depth);
+  } else if (kdHasStack(variant)) {
+    if (config.kdStackSize < 1 || config.kdStackSize > 8)
+      throw std::invalid_argument("the kd short-stack size (--stack-size) must be 1 to 8");
+    build.stackSize = uint32_t(config.kdStackSize);
+  }
   return build;
 }
 
@@ -134,5 +158,27 @@ std::unique_ptr<GpuTraversal> makeKdRestartStream(std::span<const Triangle> tris
 std::unique_ptr<GpuTraversal> makeKdBacktrackStream(std::span<const Triangle> tris, const GpuTraversalConfig& config) {
   return makeStream(KdStreamVariant::Backtrack, tris, config);
 }
+
+template <KdStreamVariant V>
+std::unique_ptr<CpuAccelerator> makeKdStreamMirror(std::span<const Triangle> tris, const AccelBuildConfig& config) {
+  return std::make_unique<KdStreamMirror>(V, tris, config);
+}
+
+template <KdStreamVariant V>
+std::unique_ptr<GpuTraversal> makeKdStream(std::span<const Triangle> tris, const GpuTraversalConfig& config) {
+  return makeStream(V, tris, config);
+}
+
+#define PASSTRACE_KD_STREAM_VARIANT(V)                                                                       \
+  template std::unique_ptr<CpuAccelerator> makeKdStreamMirror<V>(std::span<const Triangle>,                  \
+                                                                 const AccelBuildConfig&);                  \
+  template std::unique_ptr<GpuTraversal> makeKdStream<V>(std::span<const Triangle>, const GpuTraversalConfig&);
+PASSTRACE_KD_STREAM_VARIANT(KdStreamVariant::Restart)
+PASSTRACE_KD_STREAM_VARIANT(KdStreamVariant::Backtrack)
+PASSTRACE_KD_STREAM_VARIANT(KdStreamVariant::PushDown)
+PASSTRACE_KD_STREAM_VARIANT(KdStreamVariant::ShortStack)
+PASSTRACE_KD_STREAM_VARIANT(KdStreamVariant::PushDownShortStack)
+PASSTRACE_KD_STREAM_VARIANT(KdStreamVariant::Stack)
+#undef PASSTRACE_KD_STREAM_VARIANT
 
 }  // namespace passtrace

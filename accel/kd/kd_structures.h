@@ -1,7 +1,9 @@
 #pragma once
 // The kd-tree family's registry entries. One SAH builder with split clipping
-// (tracy's -e, -d) serves "kd-tree" (CPU stack traversal) and the two GPU
-// stream traversals "kd-restart" and "kd-backtrack" (thesis 8.5), whose CPU
+// (tracy's -e, -d) serves "kd-tree" (CPU stack traversal) and the GPU
+// stream traversals "kd-restart" and "kd-backtrack" (thesis 8.5) and
+// "kd-pushdown", "kd-shortstack", "kd-pushdown-shortstack", "kd-stack"
+// (seed 003 ch. 6; --stack-size for the short stacks), whose CPU
 // forms are the kernels' own algorithms over the GPU's texels
 // (kd_stream_traversal.h). "kd-pbrt" is built the pbrt way with pbrt's
 // constants (a nonzero -d overrides pbrt's depth; -e is not read since pbrt's
@@ -31,6 +33,7 @@ struct KdStreamBuild {
   Aabb sceneBox;
   AccelStats stats;         // buildMs covers construction and flattening
   uint64_t maxStepsPerRay;  // no ray of a correct traversal takes more steps
+  uint32_t stackSize = 0;   // stack entries of the stack variants (KdStreamData::stackSize)
 };
 KdStreamBuild buildKdStream(KdStreamVariant variant, std::span<const Triangle> tris, const AccelBuildConfig& config);
 
@@ -41,5 +44,10 @@ std::unique_ptr<CpuAccelerator> makeKdRestartMirror(std::span<const Triangle> tr
 std::unique_ptr<CpuAccelerator> makeKdBacktrackMirror(std::span<const Triangle> tris, const AccelBuildConfig& config);
 std::unique_ptr<GpuTraversal> makeKdRestartStream(std::span<const Triangle> tris, const GpuTraversalConfig& config);
 std::unique_ptr<GpuTraversal> makeKdBacktrackStream(std::span<const Triangle> tris, const GpuTraversalConfig& config);
+// Any stream variant (instantiated for all): the CPU mirror and the GPU kernels.
+template <KdStreamVariant V>
+std::unique_ptr<CpuAccelerator> makeKdStreamMirror(std::span<const Triangle> tris, const AccelBuildConfig& config);
+template <KdStreamVariant V>
+std::unique_ptr<GpuTraversal> makeKdStream(std::span<const Triangle> tris, const GpuTraversalConfig& config);
 
 }  // namespace passtrace

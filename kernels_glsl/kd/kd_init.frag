@@ -2,6 +2,9 @@
 // inside the scene box, clipped to [0, tMax]; rays that miss it finish here.
 #include "texel_address.glsl"
 #include "intersect.glsl"
+#ifdef KD_RECORD
+#include "kd/kd_ray_record.glsl"
+#endif
 
 layout(early_fragment_tests) in;
 
@@ -25,4 +28,12 @@ void main() {
   bool hasWork = inside && tMin <= tMax && !sceneEmpty;
   outState = vec4(packIndex(0u), 0.0, 0.0, hasWork ? 1.0 : 0.0);
   outAux = vec4(-1.0, tMin, tMax, tMax);
+#ifdef KD_RECORD
+  // Restart from the root, push-down on, empty stack.
+  uint record = kdRecordBase();
+  kdRecords[record] = packIndex(0u);
+  kdRecords[record + 1u] = packIndex(0u);
+  kdRecords[record + 2u] = packIndex(0u);
+  kdRecords[record + 3u] = 1.0;
+#endif
 }

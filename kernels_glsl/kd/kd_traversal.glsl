@@ -1,7 +1,11 @@
-// Foley & Sugerman's stackless kd-tree traversals (thesis 8.2-8.5), one step
-// at a time so a pass can stop anywhere and the next resume. The layouts are
+// Foley & Sugerman's stackless kd-tree traversals (thesis 8.2-8.5) and Horn et
+// al.'s push-down and short-stack ones (seed 003 ch. 6), one step at a time so
+// a pass can stop anywhere and the next resume. The layouts are
 // accel/kd/kd_texels.h; accel/kd/kd_stream_traversal.cpp runs the same steps on
-// the CPU. Define KD_BACKTRACK for kd-backtrack, else kd-restart.
+// the CPU. Defines: KD_BACKTRACK for kd-backtrack; else kd-restart, with
+// KD_PUSHDOWN restarting from the push-down root and KD_STACK keeping a
+// circular stack of uStackSize entries (kd_ray_record.glsl; the full stack is
+// one as deep as the tree).
 //
 // A ray's state: the node it is at, a mode, and its search interval
 // [tMin, tMax] inside [., sceneMax]:
@@ -9,7 +13,8 @@
 //   mode UP (backtrack): climbing until a node's box reaches past tMin;
 //   mode >= 0: testing the leaf's list, at packed list entry `mode`.
 // When a leaf yields no hit before its exit tMax, the interval moves on to
-// [tMax, sceneMax]: restart descends from the root again, backtrack climbs.
+// [tMax, sceneMax]: restart descends from the root (or the push-down root)
+// again, backtrack climbs; the stack variants first pop a stacked far child.
 
 const float MODE_DOWN = -1.0;
 const float MODE_UP = -2.0;
@@ -28,7 +33,28 @@ struct KdRay {
   vec4 hit;
   float steps, tests;
   bool done;
+  uint root;      // where a restart descends from: 0, or the push-down root
+  bool pushDown;  // the descent has met no node with both children to visit
+  uint top, count, record;  // the stack in kd_ray_record.glsl
 };
+
+#ifdef KD_STACK
+// The far child of a node whose children are both visited: (node, tMin, tMax).
+void pushEntry(inout KdRay ray, uint node, float tMin, float tMax) {
+  kdStorePush(ray.record, ray.top, node, tMin, tMax);
+  ray.top = (ray.top + 1u) % uStackSize;
+  ray.count = min(ray.count + 1u, uStackSize);
+}
+
+void popEntry(inout KdRay ray) {
+  ray.top = (ray.top + uStackSize - 1u) % uStackSize;
+  ray.count -= 1u;
+  uint at = ray.record + 4u + 3u * ray.top;
+  ray.node = unpackIndex(kdRecords[at]);
+  ray.tMin = kdRecords[at + 1u];
+  ray.tMax = kdRecords[at + 2u];
+}
+#endif
 
 // The leaf at ray.node has been searched.
 void leafFinished(inout KdRay ray, vec4 leaf) {
@@ -36,9 +62,9 @@ void leafFinished(inout KdRay ray, vec4 leaf) {
     ray.done = true;
     return;
   }
+#ifdef KD_BACKTRACK
   ray.tMin = ray.tMax;
   ray.tMax = ray.sceneMax;
-#ifdef KD_BACKTRACK
   if (leaf.z < 0.0) {
     ray.done = true;
   } else {
@@ -46,8 +72,18 @@ void leafFinished(inout KdRay ray, vec4 leaf) {
     ray.mode = MODE_UP;
   }
 #else
-  ray.node = 0u;
   ray.mode = MODE_DOWN;
+#ifdef KD_STACK
+  if (ray.count > 0u) {
+    popEntry(ray);
+    return;
+  }
+#endif
+  // Restart: descend again over what is left of the ray.
+  ray.tMin = ray.tMax;
+  ray.tMax = ray.sceneMax;
+  ray.node = ray.root;
+  ray.pushDown = true;
 #endif
 }
 
@@ -98,10 +134,18 @@ void kdStep(inout KdRay ray, ConstStream nodes, ConstStream lists, ConstStream t
       ray.node = first;
     } else if (tSplit <= ray.tMin) {
       ray.node = second;
-    } else {
+    } else {  // both children: the near one now, the far one later
+#ifdef KD_STACK
+      pushEntry(ray, second, tSplit, ray.tMax);  // the far child's interval ends at the old tMax
+#endif
+      ray.pushDown = false;
       ray.node = first;
       ray.tMax = tSplit;
     }
+#ifdef KD_PUSHDOWN
+    // The ray's rest lies in this child's voxel: later restarts can begin here.
+    if (ray.pushDown) ray.root = ray.node;
+#endif
   } else if (node.w >= 0.0) {  // leaf with triangles: w is its packed list start
     ray.mode = node.w;
   } else {  // empty leaf

@@ -1,9 +1,14 @@
-// kd-restart or, with KD_BACKTRACK defined, kd-backtrack traversal and
-// intersection: up to uLoopLimit steps of kd_traversal.glsl per pass.
+// kd-restart, kd-backtrack, kd-pushdown, kd-shortstack, kd-pushdown-shortstack
+// or kd-stack traversal and intersection (the defines of kd_traversal.glsl):
+// up to uLoopLimit steps of kd_traversal.glsl per pass. KD_RECORD: the ray's
+// root, push-down flag and stack live in kd_ray_record.glsl's buffer.
 #include "texel_address.glsl"
 #include "intersect.glsl"
 #include "ray_kinds.glsl"
 #include "reference_lists.glsl"
+#ifdef KD_RECORD
+#include "kd/kd_ray_record.glsl"
+#endif
 #include "kd/kd_traversal.glsl"
 
 layout(early_fragment_tests) in;
@@ -41,8 +46,25 @@ void main() {
   ray.sceneMax = aux.w;
   ray.hit = readElement(uHit);
   ray.done = false;
+  ray.root = 0u;
+  ray.pushDown = true;
+  ray.top = 0u;
+  ray.count = 0u;
+#ifdef KD_RECORD
+  ray.record = kdRecordBase();
+  ray.root = unpackIndex(kdRecords[ray.record]);
+  ray.top = unpackIndex(kdRecords[ray.record + 1u]);
+  ray.count = unpackIndex(kdRecords[ray.record + 2u]);
+  ray.pushDown = kdRecords[ray.record + 3u] != 0.0;
+#endif
   for (int i = 0; i < uLoopLimit && !ray.done; ++i)
     kdStep(ray, uNodes, uLists, uTriangles);
+#ifdef KD_RECORD
+  kdRecords[ray.record] = packIndex(ray.root);
+  kdRecords[ray.record + 1u] = packIndex(ray.top);
+  kdRecords[ray.record + 2u] = packIndex(ray.count);
+  kdRecords[ray.record + 3u] = ray.pushDown ? 1.0 : 0.0;
+#endif
   outState = vec4(packIndex(ray.node), ray.steps, ray.tests, ray.done ? 0.0 : 1.0);
   outHit = ray.hit;
   outAux = vec4(ray.mode, ray.tMin, ray.tMax, ray.sceneMax);

@@ -94,6 +94,10 @@ TEST_F(Cli, StatsAndHeatmapDescribeTheTraversal) {
   EXPECT_EQ(j["accelerator"], "kd-backtrack");
   EXPECT_GT(j["steps_per_ray"].get<double>(), 1.0);
   EXPECT_GT(j["triangle_tests_per_ray"].get<double>(), 0.0);
+  // A pixel's rays take at least the mean of all rays'.
+  EXPECT_GE(j["max_steps_per_ray"].get<double>(), j["steps_per_ray"].get<double>());
+  EXPECT_GE(j["max_triangle_tests_per_ray"].get<double>(), j["triangle_tests_per_ray"].get<double>());
+  EXPECT_NE(r.out.find("max per pixel (all its rays): "), std::string::npos) << r.out;
   EXPECT_GE(j["accel_nodes"].get<double>(), 1.0);
   EXPECT_GE(j["accel_references"].get<double>(), 32.0);
   fs::remove(path("heat.png"));
@@ -154,6 +158,8 @@ TEST_F(Cli, BadInputsGiveOneLineErrorsAndNoOutput) {
   expectOneLineError(run("-s cornell -r 2 -a 5" + outs), "unknown accelerator '5' (valid on the GPU stream renderer");
   expectOneLineError(run("-s cornell -r 2 -a kd-tree" + outs), "kd-tree");
   expectOneLineError(run("-s cornell -r 7" + outs), "-r");
+  for (const char* k : {"0", "9", "x", "2.5"})
+    expectOneLineError(run("-s cornell -a kd-shortstack --stack-size " + std::string(k) + outs), "--stack-size");
   expectOneLineError(run("-s cornell -r 1 -w 20000 -o " + path("x.png")), "too large");
   expectOneLineError(run("-s cornell --eye 1,2" + outs), "--eye");
   expectOneLineError(run("-s cornell --eye 1,2,nan" + outs), "--eye");

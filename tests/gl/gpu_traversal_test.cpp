@@ -17,12 +17,14 @@ namespace passtrace {
 namespace {
 
 // Every stream structure of the registry, with each --grid-kernels variant
-// it reads, under both triangle tests.
+// it reads and stack sizes 1, 4 and 8 where it reads --stack-size, under both
+// triangle tests.
 struct GpuCase {
   const Structure* structure;
   GridKernels gridKernels;
   std::string name;
   TriangleTest triangleTest = TriangleTest::MollerTrumbore;
+  int stackSize = AccelBuildConfig{}.kdStackSize;
 };
 
 const std::vector<GpuCase>& gpuCases() {
@@ -38,6 +40,8 @@ const std::vector<GpuCase>& gpuCases() {
         const auto reads = s.readsOn(RendererId::Gpu);
         if (std::find(reads.begin(), reads.end(), BuildParam::GridKernels) != reads.end())
           cases.push_back({&s, GridKernels::Split, name + "_split" + suffix, test});
+        if (std::find(reads.begin(), reads.end(), BuildParam::KdStackSize) != reads.end())
+          for (int k : {1, 8}) cases.push_back({&s, GridKernels::Merged, name + "_stack" + std::to_string(k) + suffix, test, k});
       }
     return cases;
   }();
@@ -56,6 +60,7 @@ TEST_P(GpuTraversalAgreement, SameHitsAsBruteForceAndSameStepsAsTheCpu) {
   scene.materials = {Material{}};
   AccelBuildConfig build;
   build.triangleTest = c.triangleTest;
+  build.kdStackSize = c.stackSize;
   // The CPU running the same algorithm over the same data.
   const auto cpu = makeMirrorStructure(*c.structure, scene.triangles, build);
 

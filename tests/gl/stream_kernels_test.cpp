@@ -15,6 +15,7 @@
 #include "render/shading.h"
 #include "stream/const_input_stream.h"
 #include "stream/gl_error.h"
+#include "stream/storage_buffer.h"
 #include "stream/texel_address.h"
 #include "tests/gl_test_support.h"
 #include "tests/test_meshes.h"
@@ -55,6 +56,30 @@ TEST_F(GlTest, ConstInputStreamFetchMatchesCppAddressing) {
   for (int i = 0; i < 37; ++i) {
     EXPECT_EQ(result[i], data[i]) << "texel " << i;
     EXPECT_EQ(unpackIndex(result[i].w), uint32_t(i));
+  }
+}
+
+// The kd short-stack kernels keep their stacks in a storage buffer across
+// passes: three passes each add element + 1, so anything but 3 (element + 1)
+// means a pass lost or did not see the previous pass's writes.
+TEST_F(GlTest, StorageBufferWritesPersistAcrossPasses) {
+  constexpr int kWidth = 13, kHeight = 5;
+  StorageBuffer buffer("test storage");
+  buffer.reserve(kWidth * kHeight);
+  EXPECT_EQ(buffer.read(kWidth * kHeight), std::vector<float>(kWidth * kHeight, 0.0f));  // starts zeroed
+  InOutStream out(kWidth, kHeight, 1);
+  StreamKernel add("add", "test_functions.frag", StreamKernel::Depth::Test, {"TEST_STORAGE"});
+  add.bindStorage(0, buffer);
+  add.set("uWidth", kWidth);
+  out.enable();
+  out.clearDepth(1.0f);
+  out.setWriteSurfaces({0});
+  for (int pass = 0; pass < 3; ++pass) add.execute();
+  const std::vector<glm::vec4> result = out.read(0);
+  const std::vector<float> stored = buffer.read(kWidth * kHeight);
+  for (int i = 0; i < kWidth * kHeight; ++i) {
+    EXPECT_EQ(result[i].x, 3.0f * float(i + 1)) << "element " << i;
+    EXPECT_EQ(stored[i], 3.0f * float(i + 1)) << "element " << i;
   }
 }
 

@@ -1,6 +1,7 @@
 // Every structure of the registry on every ray tracer through the command
 // line: the hit buffers equal brute force on the Cornell box and the bunny,
-// and on the BART scenes when they are found.
+// and on the BART scenes when they are found; the short stacks with 1, 4 and 8
+// entries, the GPU kd rows at loop limits 3 and 64.
 
 #include <filesystem>
 #include <string>
@@ -28,14 +29,16 @@ TEST_F(Cli, HitBuffersOfEveryAcceleratorEqualBruteForce) {
   const std::vector<std::pair<int, std::string>> runs = testing_registry::everyStructureRun();
   for (const char* name : {"cornell", "bunny"}) {
     const Scene scene = loadScene(name);
-    for (const auto& [renderer, accel] : runs) {
-      const std::string file = path("h.exr");
-      const RunResult r = run(std::string("-s ") + name + " -b 1 -w 40 -t 2 -r " + std::to_string(renderer) + " -a " +
-                              accel + " --hits " + file);
-      ASSERT_EQ(r.status, 0) << r.err;
-      SCOPED_TRACE(std::string(name) + " -r " + std::to_string(renderer) + " -a " + accel);
-      expectHitsMatchBruteForce(file, scene, 40);
-    }
+    for (const auto& entry : runs)
+      for (const std::string& loop : testing_registry::loopLimitFlags(entry)) {
+        const auto& [renderer, accel] = entry;
+        const std::string file = path("h.exr");
+        const RunResult r = run(std::string("-s ") + name + " -b 1 -w 40 -t 2 -r " + std::to_string(renderer) +
+                                " -a " + accel + loop + " --hits " + file);
+        ASSERT_EQ(r.status, 0) << r.err;
+        SCOPED_TRACE(std::string(name) + " -r " + std::to_string(renderer) + " -a " + accel + loop);
+        expectHitsMatchBruteForce(file, scene, 40);
+      }
   }
 }
 
@@ -46,14 +49,16 @@ TEST_F(Cli, BartScenesHitBuffersEqualBruteForceWithEveryStructure) {
   const std::vector<std::pair<int, std::string>> runs = testing_registry::everyStructureRun();
   for (const char* name : {"robots", "kitchen"}) {
     const Scene scene = loadScene(name, SceneOptions{bart});
-    for (const auto& [renderer, accel] : runs) {
-      const std::string file = path("h.exr");
-      const RunResult r = run(std::string("-s ") + name + " --bart-dir " + bart.string() + " -b 1 -w 24 -t 1 -r " +
-                              std::to_string(renderer) + " -a " + accel + " --hits " + file);
-      ASSERT_EQ(r.status, 0) << r.err;
-      SCOPED_TRACE(std::string(name) + " -r " + std::to_string(renderer) + " -a " + accel);
-      expectHitsMatchBruteForce(file, scene, 24);
-    }
+    for (const auto& entry : runs)
+      for (const std::string& loop : testing_registry::loopLimitFlags(entry)) {
+        const auto& [renderer, accel] = entry;
+        const std::string file = path("h.exr");
+        const RunResult r = run(std::string("-s ") + name + " --bart-dir " + bart.string() + " -b 1 -w 24 -t 1 -r " +
+                                std::to_string(renderer) + " -a " + accel + loop + " --hits " + file);
+        ASSERT_EQ(r.status, 0) << r.err;
+        SCOPED_TRACE(std::string(name) + " -r " + std::to_string(renderer) + " -a " + accel + loop);
+        expectHitsMatchBruteForce(file, scene, 24);
+      }
   }
 }
 

@@ -35,6 +35,29 @@ std::vector<const Structure*> cpuStructures() {
   return rows;
 }
 
+// Each CPU row once, and the rows reading --stack-size also with 1 and 8
+// entries (4 is the default).
+struct CpuCase {
+  const Structure* structure;
+  int stackSize;
+  std::string name;
+};
+const std::vector<CpuCase>& cpuCases() {
+  static const std::vector<CpuCase> cases = [] {
+  std::vector<CpuCase> cases;
+  for (const Structure* s : cpuStructures()) {
+    std::string name(s->name);
+    std::replace(name.begin(), name.end(), '-', '_');
+    cases.push_back({s, AccelBuildConfig{}.kdStackSize, name});
+    const auto reads = s->readsOn(RendererId::Cpu);
+    if (std::find(reads.begin(), reads.end(), BuildParam::KdStackSize) != reads.end())
+      for (int k : {1, 8}) cases.push_back({s, k, name + "_stack" + std::to_string(k)});
+  }
+  return cases;
+  }();
+  return cases;
+}
+
 // Rays whose origins lie exactly on cell boundary planes (computed as the
 // grid computes them), in random, axis-aligned and plane-parallel
 // directions, some lying in the plane they start on, some aimed inside.
@@ -118,7 +141,8 @@ Agreement compareWithBruteForce(const Structure& s, const CpuAccelerator& accel,
 class CpuStructureAgreement : public ::testing::TestWithParam<std::tuple<size_t, size_t>> {};
 
 TEST_P(CpuStructureAgreement, SameHitsAsBruteForce) {
-  const Structure& s = *cpuStructures().at(std::get<0>(GetParam()));
+  const CpuCase& c = cpuCases().at(std::get<0>(GetParam()));
+  const Structure& s = *c.structure;
   const testmesh::NamedMesh mesh = testmesh::standardMeshesAndCellBoundaries().at(std::get<1>(GetParam()));
   const auto& tris = mesh.tris;
   const UniformGrid grid = buildUniformGrid(tris);
@@ -130,7 +154,9 @@ TEST_P(CpuStructureAgreement, SameHitsAsBruteForce) {
     const std::vector<Ray> edge = boundaryRays(grid, 2000, 9);
     rays.insert(rays.end(), edge.begin(), edge.end());
   }
-  const auto accel = makeCpuStructure(s, tris);
+  AccelBuildConfig config;
+  config.kdStackSize = c.stackSize;
+  const auto accel = makeCpuStructure(s, tris, config);
   const Agreement a = compareWithBruteForce(s, *accel, tris, rays);
   const std::string what = mesh.name + " / " + accel->name();
   EXPECT_EQ(a.foundMismatch, 0u) << what;
@@ -141,12 +167,11 @@ TEST_P(CpuStructureAgreement, SameHitsAsBruteForce) {
 
 INSTANTIATE_TEST_SUITE_P(
     AllStructures, CpuStructureAgreement,
-    ::testing::Combine(::testing::Range(size_t(0), cpuStructures().size()),
+    ::testing::Combine(::testing::Range(size_t(0), cpuCases().size()),
                        ::testing::Range(size_t(0), testmesh::standardMeshesAndCellBoundaries().size())),
     [](const auto& info) {
-      std::string name(cpuStructures().at(std::get<0>(info.param))->name);
-      std::replace(name.begin(), name.end(), '-', '_');
-      return name + "_" + testmesh::standardMeshesAndCellBoundaries().at(std::get<1>(info.param)).name;
+      return cpuCases().at(std::get<0>(info.param)).name + "_" +
+             testmesh::standardMeshesAndCellBoundaries().at(std::get<1>(info.param)).name;
     });
 
 // Built without triangles nothing is hit and no step is taken; one triangle
