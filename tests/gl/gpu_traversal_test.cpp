@@ -17,12 +17,15 @@ namespace passtrace {
 namespace {
 
 // Every stream structure of the registry, with each --grid-kernels variant
-// it reads, under both triangle tests.
+// it reads (and the binned kd build, thesis and papay termination, where it
+// reads --kd-builder), under both triangle tests.
 struct GpuCase {
   const Structure* structure;
   GridKernels gridKernels;
   std::string name;
   TriangleTest triangleTest = TriangleTest::MollerTrumbore;
+  KdBuilderKind kdBuilder = KdBuilderKind::Exact;
+  KdTermination kdTermination = KdTermination::Thesis;
 };
 
 const std::vector<GpuCase>& gpuCases() {
@@ -38,6 +41,11 @@ const std::vector<GpuCase>& gpuCases() {
         const auto reads = s.readsOn(RendererId::Gpu);
         if (std::find(reads.begin(), reads.end(), BuildParam::GridKernels) != reads.end())
           cases.push_back({&s, GridKernels::Split, name + "_split" + suffix, test});
+        if (std::find(reads.begin(), reads.end(), BuildParam::KdBuilder) != reads.end()) {
+          cases.push_back({&s, GridKernels::Merged, name + "_binned" + suffix, test, KdBuilderKind::Binned});
+          cases.push_back({&s, GridKernels::Merged, name + "_binned_papay" + suffix, test, KdBuilderKind::Binned,
+                           KdTermination::Papay});
+        }
       }
     return cases;
   }();
@@ -56,6 +64,8 @@ TEST_P(GpuTraversalAgreement, SameHitsAsBruteForceAndSameStepsAsTheCpu) {
   scene.materials = {Material{}};
   AccelBuildConfig build;
   build.triangleTest = c.triangleTest;
+  build.kdBuilder = c.kdBuilder;
+  build.kdTermination = c.kdTermination;
   // The CPU running the same algorithm over the same data.
   const auto cpu = makeMirrorStructure(*c.structure, scene.triangles, build);
 

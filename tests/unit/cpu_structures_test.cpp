@@ -115,10 +115,40 @@ Agreement compareWithBruteForce(const Structure& s, const CpuAccelerator& accel,
   return a;
 }
 
+// Every CPU row with its default build, plus the binned SAH build (with the
+// thesis's and the seed's termination) of the rows that read --kd-builder.
+struct CpuCase {
+  const Structure* structure;
+  AccelBuildConfig config;
+  std::string name;
+};
+
+const std::vector<CpuCase>& cpuCases() {
+  static const std::vector<CpuCase> cases = [] {
+    std::vector<CpuCase> cases;
+    for (const Structure* s : cpuStructures()) {
+      std::string name(s->name);
+      std::replace(name.begin(), name.end(), '-', '_');
+      cases.push_back({s, AccelBuildConfig{}, name});
+      const auto reads = s->readsOn(RendererId::Cpu);
+      if (std::find(reads.begin(), reads.end(), BuildParam::KdBuilder) == reads.end()) continue;
+      for (const KdTermination rule : {KdTermination::Thesis, KdTermination::Papay}) {
+        AccelBuildConfig config;
+        config.kdBuilder = KdBuilderKind::Binned;
+        config.kdTermination = rule;
+        cases.push_back({s, config, name + (rule == KdTermination::Papay ? "_binned_papay" : "_binned")});
+      }
+    }
+    return cases;
+  }();
+  return cases;
+}
+
 class CpuStructureAgreement : public ::testing::TestWithParam<std::tuple<size_t, size_t>> {};
 
 TEST_P(CpuStructureAgreement, SameHitsAsBruteForce) {
-  const Structure& s = *cpuStructures().at(std::get<0>(GetParam()));
+  const CpuCase& c = cpuCases().at(std::get<0>(GetParam()));
+  const Structure& s = *c.structure;
   const testmesh::NamedMesh mesh = testmesh::standardMeshesAndCellBoundaries().at(std::get<1>(GetParam()));
   const auto& tris = mesh.tris;
   const UniformGrid grid = buildUniformGrid(tris);
@@ -130,9 +160,9 @@ TEST_P(CpuStructureAgreement, SameHitsAsBruteForce) {
     const std::vector<Ray> edge = boundaryRays(grid, 2000, 9);
     rays.insert(rays.end(), edge.begin(), edge.end());
   }
-  const auto accel = makeCpuStructure(s, tris);
+  const auto accel = makeCpuStructure(s, tris, c.config);
   const Agreement a = compareWithBruteForce(s, *accel, tris, rays);
-  const std::string what = mesh.name + " / " + accel->name();
+  const std::string what = mesh.name + " / " + c.name;
   EXPECT_EQ(a.foundMismatch, 0u) << what;
   EXPECT_EQ(a.tieMismatch, 0u) << what;
   EXPECT_EQ(a.bogusAnyHit, 0u) << what;
@@ -141,12 +171,11 @@ TEST_P(CpuStructureAgreement, SameHitsAsBruteForce) {
 
 INSTANTIATE_TEST_SUITE_P(
     AllStructures, CpuStructureAgreement,
-    ::testing::Combine(::testing::Range(size_t(0), cpuStructures().size()),
+    ::testing::Combine(::testing::Range(size_t(0), cpuCases().size()),
                        ::testing::Range(size_t(0), testmesh::standardMeshesAndCellBoundaries().size())),
     [](const auto& info) {
-      std::string name(cpuStructures().at(std::get<0>(info.param))->name);
-      std::replace(name.begin(), name.end(), '-', '_');
-      return name + "_" + testmesh::standardMeshesAndCellBoundaries().at(std::get<1>(info.param)).name;
+      return cpuCases().at(std::get<0>(info.param)).name + "_" +
+             testmesh::standardMeshesAndCellBoundaries().at(std::get<1>(info.param)).name;
     });
 
 // Built without triangles nothing is hit and no step is taken; one triangle
