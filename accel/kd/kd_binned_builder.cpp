@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <vector>
 
@@ -24,18 +25,27 @@ struct Bins {
 
 // Bin of coordinate x: floor((x - lo) * scale), clamped (a clipped bound
 // lies inside the voxel, but rounding may put it a hair outside a bin range).
-int binOf(float x, float lo, float scale) {
+int binOf(float x, float lo, float scale, int binCount) {
   const float b = (x - lo) * scale;
-  return b <= 0.0f ? 0 : std::min(static_cast<int>(b), kKdBins - 1);
+  return b <= 0.0f ? 0 : std::min(static_cast<int>(b), binCount - 1);
 }
 
-void binRefs(std::span<const KdRef> refs, const Aabb& voxel, const glm::vec3& scale, const bool* axes, Bins& bins) {
+void binRefs(std::span<const KdRef> refs, const Aabb& voxel, const glm::vec3& scale, const bool* axes, int binCount,
+             Bins& bins) {
   for (const KdRef& r : refs)
     for (int a = 0; a < 3; ++a) {
       if (!axes[a]) continue;
-      ++bins.min[a][binOf(r.bounds.min[a], voxel.min[a], scale[a])];
-      ++bins.max[a][binOf(r.bounds.max[a], voxel.min[a], scale[a])];
+      ++bins.min[a][binOf(r.bounds.min[a], voxel.min[a], scale[a], binCount)];
+      ++bins.max[a][binOf(r.bounds.max[a], voxel.min[a], scale[a], binCount)];
     }
+}
+
+// kKdBins, or for a node of n < kKdBins / 2 references the power of two
+// at or above 2n (at least 4): n references have at most 2n distinct bounds,
+// and the boundary scan, not the binning, is most of a small node's time.
+int binsFor(size_t n) {
+  if (n >= size_t(kKdBins / 2)) return kKdBins;
+  return std::max(4, static_cast<int>(std::bit_ceil(2 * n)));
 }
 
 KdSplit findBinnedSplit(std::span<const KdRef> refs, const Aabb& voxel, const KdBuildConfig& config,
@@ -45,19 +55,20 @@ KdSplit findBinnedSplit(std::span<const KdRef> refs, const Aabb& voxel, const Kd
   const float area = voxel.surfaceArea();
   if (!(area > 0.0f)) return best;  // a point or segment voxel: nothing to weigh
   const bool axes[3] = {e.x > 0.0f, e.y > 0.0f, e.z > 0.0f};
+  const int binCount = binsFor(refs.size());
   glm::vec3 scale(0.0f);
   for (int a = 0; a < 3; ++a)
-    if (axes[a]) scale[a] = float(kKdBins) / e[a];
+    if (axes[a]) scale[a] = float(binCount) / e[a];
 
   Bins bins;
   if (refs.size() < kKdParallelSweepRefs) {
-    binRefs(refs, voxel, scale, axes, bins);
+    binRefs(refs, voxel, scale, axes, binCount, bins);
   } else {  // fixed chunks; integer sums, so any thread count gives the same bins
     std::vector<Bins> partial(kKdSweepChunks);
     const size_t chunk = (refs.size() + kKdSweepChunks - 1) / kKdSweepChunks;
     tbb::parallel_for(size_t(0), kKdSweepChunks, [&](size_t c) {
       const size_t begin = std::min(refs.size(), c * chunk), end = std::min(refs.size(), begin + chunk);
-      binRefs(refs.subspan(begin, end - begin), voxel, scale, axes, partial[c]);
+      binRefs(refs.subspan(begin, end - begin), voxel, scale, axes, binCount, partial[c]);
     });
     for (const Bins& p : partial) bins.add(p);
   }
@@ -77,7 +88,7 @@ KdSplit findBinnedSplit(std::span<const KdRef> refs, const Aabb& voxel, const Kd
     // inclusive scan from the far end, here n minus the max-bins before b).
     alignas(32) float left[kKdBins], right[kKdBins], cost[kKdBins];
     uint32_t minBefore = 0, maxBefore = 0;
-    for (int b = 0; b < kKdBins; ++b) {
+    for (int b = 0; b < binCount; ++b) {
       left[b] = float(minBefore);
       right[b] = n - float(maxBefore);
       minBefore += bins.min[axis][b];
@@ -85,18 +96,19 @@ KdSplit findBinnedSplit(std::span<const KdRef> refs, const Aabb& voxel, const Kd
     }
     // Every boundary's SAH in one branch-free loop the compiler vectorises
     // (b = 0, the voxel's face, is computed and never chosen).
-    for (int b = 0; b < kKdBins; ++b) {
-      const float t = float(b) * (1.0f / float(kKdBins));
+    const float binWidth = 1.0f / float(binCount);  // a power of two: exact
+    for (int b = 0; b < binCount; ++b) {
+      const float t = float(b) * binWidth;
       const float areaLeft = cross + t * sideArea, areaRight = cross + (1.0f - t) * sideArea;
       cost[b] = perArea * (areaLeft * left[b] + areaRight * right[b]);
     }
-    for (int b = 0; b < kKdBins; ++b) {
+    for (int b = 0; b < binCount; ++b) {
       if (emptyBonus != 0.0f && (left[b] == 0.0f || right[b] == 0.0f)) cost[b] *= 1.0f - emptyBonus;
       cost[b] += traversal;
     }
-    for (int b = 1; b < kKdBins; ++b) {
+    for (int b = 1; b < binCount; ++b) {
       if (!(cost[b] < best.cost)) continue;
-      const float p = lo + width * (float(b) * (1.0f / float(kKdBins)));
+      const float p = lo + width * (float(b) * binWidth);
       if (p > lo && p < hi && p - lo >= minThickness && hi - p >= minThickness) best = KdSplit{axis, p, cost[b]};
     }
   }

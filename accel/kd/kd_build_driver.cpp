@@ -128,6 +128,10 @@ class Driver {
   // triangles in or touching the plane go to both.
   void sendToChildren(std::span<const KdRef> refs, int axis, float p, const Item& left, const Item& right,
                       std::vector<KdRef>& leftRefs, std::vector<KdRef>& rightRefs) const {
+    size_t toLeft = 0, toRight = 0;  // counted first: one allocation per list
+    for (const KdRef& r : refs) toLeft += r.bounds.min[axis] <= p, toRight += r.bounds.max[axis] >= p;
+    leftRefs.reserve(leftRefs.size() + toLeft);
+    rightRefs.reserve(rightRefs.size() + toRight);
     for (const KdRef& r : refs) {
       if (r.bounds.min[axis] <= p)
         leftRefs.push_back({r.tri, childBounds(tris_[r.tri], r.bounds, left.voxel, config_.splitClipping)});
