@@ -17,6 +17,71 @@ bool contains(const Aabb& outer, const Aabb& inner) {
   return glm::all(glm::lessThanEqual(outer.min, inner.min)) && glm::all(glm::lessThanEqual(inner.max, outer.max));
 }
 
+// Sutherland–Hodgman: the part of `tri` inside the closed box, as a
+// polygon of n vertices v[0..n) (none when it misses; at most 3 + 6).
+struct ClippedPolygon {
+  glm::vec3 bufA[12], bufB[12];
+  glm::vec3* v = bufA;
+  int n = 3;
+
+  ClippedPolygon(const Triangle& tri, const Aabb& box) {
+    bufA[0] = tri.v0, bufA[1] = tri.v1, bufA[2] = tri.v2;
+    glm::vec3* out = bufB;
+    const Aabb triBounds = tri.bounds();
+    for (int axis = 0; axis < 3 && n > 0; ++axis) {
+      for (int side = 0; side < 2 && n > 0; ++side) {
+        const float plane = side == 0 ? box.min[axis] : box.max[axis];
+        // Most straddlers cross only the newest plane: skip the planes the
+        // whole triangle lies inside of (clipping by them changes nothing).
+        if (side == 0 ? triBounds.min[axis] >= plane : triBounds.max[axis] <= plane) continue;
+        auto inside = [&](const glm::vec3& p) { return side == 0 ? p[axis] - plane : plane - p[axis]; };
+        int m = 0;
+        for (int i = 0; i < n; ++i) {
+          const glm::vec3& cur = v[i];
+          const glm::vec3& next = v[(i + 1) % n];
+          const float dc = inside(cur), dn = inside(next);
+          if (dc >= 0.0f) out[m++] = cur;
+          if ((dc > 0.0f && dn < 0.0f) || (dc < 0.0f && dn > 0.0f)) {
+            glm::vec3 p = cur + (dc / (dc - dn)) * (next - cur);
+            p[axis] = plane;  // exactly on the plane, whatever the rounding
+            out[m++] = p;
+          }
+        }
+        n = m;
+        std::swap(v, out);
+      }
+    }
+  }
+};
+
+// A triangle straddling the plane `p` on `axis`: its bounds on each side
+// from one clip to the parent voxel, the polygon's vertices on that side
+// and its crossings of the plane (seed 003 Algorithm 8 makes both boxes at
+// once). Either may be empty where rounding clipped everything away.
+void splitClip(const Triangle& tri, const Aabb& voxel, int axis, float p, Aabb& left, Aabb& right) {
+  const ClippedPolygon poly(tri, voxel);
+  for (int i = 0; i < poly.n; ++i) {
+    const glm::vec3& cur = poly.v[i];
+    const glm::vec3& next = poly.v[(i + 1) % poly.n];
+    if (cur[axis] <= p) left.extend(cur);
+    if (cur[axis] >= p) right.extend(cur);
+    if ((cur[axis] < p && next[axis] > p) || (cur[axis] > p && next[axis] < p)) {
+      glm::vec3 x = cur + ((p - cur[axis]) / (next[axis] - cur[axis])) * (next - cur);
+      x[axis] = p;
+      left.extend(x);
+      right.extend(x);
+    }
+  }
+}
+
+// A clipped box made safe: inside the child voxel and the old bounds, and
+// when rounding emptied it, the old bounds cut to the child (the triangle
+// does touch the child's closed voxel, by classification).
+Aabb settle(const Aabb& clipped, const Aabb& old, const Aabb& child) {
+  const Aabb b = intersection(intersection(clipped, child), old);
+  return b.empty() ? intersection(old, child) : b;
+}
+
 // The bounds of a triangle in a child voxel, given its bounds in the parent.
 // Only a triangle reaching past the new plane changes; its clipped region
 // can only shrink, so the old bounds cap the new ones, and when rounding
@@ -126,13 +191,21 @@ class Driver {
 
   // Each reference goes to every child whose closed voxel its bounds touch:
   // triangles in or touching the plane go to both.
-  void sendToChildren(std::span<const KdRef> refs, int axis, float p, const Item& left, const Item& right,
+  void sendToChildren(std::span<const KdRef> refs, const Aabb& parent, int axis, float p, const Item& left,
+                      const Item& right,
                       std::vector<KdRef>& leftRefs, std::vector<KdRef>& rightRefs) const {
     size_t toLeft = 0, toRight = 0;  // counted first: one allocation per list
     for (const KdRef& r : refs) toLeft += r.bounds.min[axis] <= p, toRight += r.bounds.max[axis] >= p;
     leftRefs.reserve(leftRefs.size() + toLeft);
     rightRefs.reserve(rightRefs.size() + toRight);
     for (const KdRef& r : refs) {
+      if (config_.splitClipping && r.bounds.min[axis] < p && r.bounds.max[axis] > p) {
+        Aabb l, rr;
+        splitClip(tris_[r.tri], parent, axis, p, l, rr);
+        leftRefs.push_back({r.tri, settle(l, r.bounds, left.voxel)});
+        rightRefs.push_back({r.tri, settle(rr, r.bounds, right.voxel)});
+        continue;
+      }
       if (r.bounds.min[axis] <= p)
         leftRefs.push_back({r.tri, childBounds(tris_[r.tri], r.bounds, left.voxel, config_.splitClipping)});
       if (r.bounds.max[axis] >= p)
@@ -147,14 +220,14 @@ class Driver {
     left.depth = right.depth = item.depth + 1;
     const std::span<const KdRef> refs = item.refs;
     if (refs.size() < kKdParallelSweepRefs) {
-      sendToChildren(refs, split.axis, split.position, left, right, left.refs, right.refs);
+      sendToChildren(refs, item.voxel, split.axis, split.position, left, right, left.refs, right.refs);
     } else {
       // Fixed chunks, concatenated in order: the same lists for any thread count.
       std::vector<std::vector<KdRef>> lefts(kKdSweepChunks), rights(kKdSweepChunks);
       const size_t chunk = (refs.size() + kKdSweepChunks - 1) / kKdSweepChunks;
       tbb::parallel_for(size_t(0), kKdSweepChunks, [&](size_t c) {
         const size_t begin = std::min(refs.size(), c * chunk), end = std::min(refs.size(), begin + chunk);
-        sendToChildren(refs.subspan(begin, end - begin), split.axis, split.position, left, right, lefts[c],
+        sendToChildren(refs.subspan(begin, end - begin), item.voxel, split.axis, split.position, left, right, lefts[c],
                        rights[c]);
       });
       for (size_t c = 0; c < kKdSweepChunks; ++c) {
@@ -204,41 +277,11 @@ class Driver {
 
 }  // namespace
 
-// Sutherland–Hodgman: the bounds of the part of `tri` inside the closed box,
-// cut to the box (rounding may put an intersection point a hair outside).
-// At most 3 + 6 vertices survive.
 Aabb clipTriangleToBox(const Triangle& tri, const Aabb& box) {
-  glm::vec3 bufA[12] = {tri.v0, tri.v1, tri.v2}, bufB[12];
-  glm::vec3* in = bufA;
-  glm::vec3* out = bufB;
-  int n = 3;
-  const Aabb triBounds = tri.bounds();
-  for (int axis = 0; axis < 3 && n > 0; ++axis) {
-    for (int side = 0; side < 2 && n > 0; ++side) {
-      const float plane = side == 0 ? box.min[axis] : box.max[axis];
-      // Most straddlers cross only the newest plane: skip the planes the
-      // whole triangle lies inside of (clipping by them changes nothing).
-      if (side == 0 ? triBounds.min[axis] >= plane : triBounds.max[axis] <= plane) continue;
-      auto inside = [&](const glm::vec3& p) { return side == 0 ? p[axis] - plane : plane - p[axis]; };
-      int m = 0;
-      for (int i = 0; i < n; ++i) {
-        const glm::vec3& cur = in[i];
-        const glm::vec3& next = in[(i + 1) % n];
-        const float dc = inside(cur), dn = inside(next);
-        if (dc >= 0.0f) out[m++] = cur;
-        if ((dc > 0.0f && dn < 0.0f) || (dc < 0.0f && dn > 0.0f)) {
-          glm::vec3 p = cur + (dc / (dc - dn)) * (next - cur);
-          p[axis] = plane;  // exactly on the plane, whatever the rounding
-          out[m++] = p;
-        }
-      }
-      n = m;
-      std::swap(in, out);
-    }
-  }
+  const ClippedPolygon poly(tri, box);
   Aabb bounds;
-  for (int i = 0; i < n; ++i) bounds.extend(in[i]);
-  return n == 0 ? bounds : intersection(bounds, box);
+  for (int i = 0; i < poly.n; ++i) bounds.extend(poly.v[i]);
+  return poly.n == 0 ? bounds : intersection(bounds, box);
 }
 
 KdTree buildKdTreeWith(std::span<const Triangle> tris, const KdBuildConfig& config, KdSplitFinder findSplit) {
