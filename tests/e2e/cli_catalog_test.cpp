@@ -107,7 +107,8 @@ const std::vector<std::pair<BuildParam, std::string>> kParamArgs = {
     {BuildParam::GridMultiplier, "-g 2"},      {BuildParam::KdMinElements, "-e 3"},
     {BuildParam::KdMaxDepth, "-d 10"},         {BuildParam::GridKernels, "--grid-kernels split"},
     {BuildParam::LoopLimit, "-l 10"},          {BuildParam::PageTexels, "--page-texels 0"},
-    {BuildParam::TriangleTest, "--triangle-test watertight"}};
+    {BuildParam::TriangleTest, "--triangle-test watertight"},
+    {BuildParam::KdBuilder, "--kd-builder binned"},   {BuildParam::KdTermination, "--kd-termination papay"}};
 
 // For each renderer of a row: the flags the row reads give no warning; the
 // first flag it does not read gives exactly one, naming the flag.
