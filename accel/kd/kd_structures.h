@@ -32,6 +32,7 @@ KdTree buildKdTreeFor(std::span<const Triangle> tris, const AccelBuildConfig& co
 // constants) into `stats`; structureBytes is the caller's, as it depends on
 // the layout traversed.
 void setKdTreeStats(AccelStats& stats, const KdTree& tree);
+
 // pbrt's config, with kdMaxDepth when nonzero.
 KdBuildConfig kdPbrtConfigFor(const AccelBuildConfig& config);
 

