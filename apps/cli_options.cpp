@@ -99,7 +99,7 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
       ->check(CLI::IsMember({"moller-trumbore", "watertight"}))->capture_default_str();
   app.add_option("--kd-builder", o.kdBuilder,
                  "kd-tree SAH build: exact (every clipped triangle bound a candidate plane) or binned (min-max "
-                 "binning, up to 32 bins per axis)")
+                 "binning, up to 64 bins per axis)")
       ->check(CLI::IsMember({"exact", "binned"}))->capture_default_str();
   app.add_option("--kd-termination", o.kdTermination,
                  "kd-tree leaves: thesis (-e, -d) or papay (seed 003: depth ceil(2 + 1.2 log2 N), leaf below 2/8/12 "
