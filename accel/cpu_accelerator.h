@@ -14,6 +14,7 @@
 #include "accel/bvh/kay_kajiya_builder.h"
 #include "accel/geometry/geometry.h"
 #include "accel/geometry/triangle_test.h"
+#include "accel/kd/kd_build_options.h"
 #include "accel/traversal_stats.h"
 
 namespace passtrace {
@@ -26,6 +27,10 @@ struct AccelStats {
   size_t leaves = 0;
   size_t references = 0;          // triangle references (a kd-tree may repeat some)
   uint32_t depth = 0;             // levels; a single leaf is 1
+  // Expected cost of a ray that hits the root's box, by the SAH with the kd
+  // builders' constants (kd_sah_cost.h); 0 = not computed for this structure.
+  double sahCost = 0;
+  uint64_t structureBytes = 0;    // nodes + references as the traversal stores them; 0 = unknown
 };
 
 // Construction parameters of every structure (tracy's -c -t -g -e -d).
@@ -37,6 +42,8 @@ struct AccelBuildConfig {
   int kdMinElements = 2;      // -e: fewest triangles for a kd-tree internal node
   int kdMaxDepth = 0;         // -d: kd-tree maximum depth; 0 = 8 + 1.3 log2 N
   int kdStackSize = 4;        // --stack-size: kd short-stack entries, 1-8
+  KdBuilderKind kdBuilder = KdBuilderKind::Exact;        // --kd-builder: exact or binned SAH
+  KdTermination kdTermination = KdTermination::Thesis;   // --kd-termination: -e/-d, or the seed's rules
   // --triangle-test: used by every traversal, CPU and GPU (not a build
   // parameter, but every structure is made from this config).
   TriangleTest triangleTest = TriangleTest::MollerTrumbore;

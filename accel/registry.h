@@ -56,6 +56,8 @@ enum class BuildParam {
   PageTexels,      // --page-texels: GPU data texture size (every stream structure)
   TriangleTest,    // --triangle-test: every structure but Embree
   KdStackSize,     // --stack-size: kd short-stack entries (kdStackSize)
+  KdBuilder,       // --kd-builder: exact or binned SAH (kdBuilder)
+  KdTermination,   // --kd-termination: thesis (-e/-d) or papay (kdTermination)
 };
 // The flag a parameter is given with, as --help shows it ("-g/--grid-multiplier").
 std::string_view buildParamFlag(BuildParam param);
@@ -66,7 +68,7 @@ inline constexpr BuildParam kBuildParams[] = {
     BuildParam::SwapChildren,  BuildParam::GsTries,   BuildParam::GridMultiplier,
     BuildParam::KdMinElements, BuildParam::KdMaxDepth, BuildParam::GridKernels,
     BuildParam::LoopLimit,     BuildParam::PageTexels, BuildParam::TriangleTest,
-    BuildParam::KdStackSize};
+    BuildParam::KdStackSize,   BuildParam::KdBuilder,  BuildParam::KdTermination};
 
 // Peak resident bytes per triangle of a run, measured (apps' memory check):
 // the slope between 1 M and 2 M triangles of the procedural "spheres" scene,

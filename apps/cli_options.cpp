@@ -81,7 +81,7 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
       ->check(CLI::Range(1, 8))->capture_default_str();
   app.add_option("-c,--swap-children", o.swapChildren, "K/K BVH: children swapped with probability 0.5 c")
       ->check(CLI::Range(0, 2))->capture_default_str();
-  app.add_option("--threads", o.threads, "CPU renderer threads (0: all cores)")
+  app.add_option("--threads", o.threads, "CPU renderer and structure build threads (0: all cores)")
       ->check(CLI::Range(0u, kMaxThreads))->capture_default_str();
   app.add_option("--eye", eye, "camera position x,y,z (default: the scene's view)");
   app.add_option("--look-at", lookAt, "point the camera looks at x,y,z");
@@ -101,6 +101,14 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
                  "(Woop, Benthin, Wald 2013: no ray slips between triangles sharing an edge); -r 3 uses "
                  "Embree's own test and ignores it")
       ->check(CLI::IsMember({"moller-trumbore", "watertight"}))->capture_default_str();
+  app.add_option("--kd-builder", o.kdBuilder,
+                 "kd-tree SAH build: exact (every clipped triangle bound a candidate plane) or binned (min-max "
+                 "binning, up to 64 bins per axis)")
+      ->check(CLI::IsMember({"exact", "binned"}))->capture_default_str();
+  app.add_option("--kd-termination", o.kdTermination,
+                 "kd-tree leaves: thesis (-e, -d) or papay (seed 003: depth ceil(2 + 1.2 log2 N), leaf below 2/8/12 "
+                 "triangles for N < 700K / <= 3M / more; replaces -e and -d)")
+      ->check(CLI::IsMember({"thesis", "papay"}))->capture_default_str();
   app.add_option("--page-texels", o.pageTexels,
                  "GPU: texels per data texture (rounded down to a power of two); larger data spreads over "
                  "several textures. 0: the largest texture the GL accepts")
@@ -152,7 +160,8 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
   o.listJson = o.list && app.count("--json") > 0;
   o.accelGiven = app.count("--accel") > 0;
   for (const char* flag : {"--swap-children", "--gs-tries", "--grid-multiplier", "--kd-min-elements", "--kd-max-depth",
-                           "--grid-kernels", "--loop-limit", "--page-texels", "--triangle-test", "--stack-size"})
+                           "--grid-kernels", "--loop-limit", "--page-texels", "--triangle-test", "--stack-size",
+                           "--kd-builder", "--kd-termination"})
     if (app.count(flag)) o.givenFlags.emplace_back(flag);
   return 0;
 }

@@ -49,6 +49,8 @@ struct Options {
   std::string glBackend = "auto";   // --gl-backend
   std::string gridKernels = "merged";  // --grid-kernels: merged or split (Purcell)
   std::string triangleTest = "moller-trumbore";  // --triangle-test: moller-trumbore or watertight
+  std::string kdBuilder = "exact";      // --kd-builder: exact or binned SAH
+  std::string kdTermination = "thesis";  // --kd-termination: thesis (-e/-d) or papay (seed 003)
   uint64_t pageTexels = 0;          // --page-texels: GPU data texture size, 0 = the GL's largest
   std::string heatmap;              // --heatmap: per-pixel traversal steps as an image
   std::string exportPath;           // --export: write the scene's triangles (.obj/.gltf/.glb) and exit

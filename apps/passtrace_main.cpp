@@ -3,7 +3,10 @@
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <optional>
 #include <string>
+
+#include <tbb/global_control.h>
 
 #include "apps/cli_options.h"
 #include "apps/run_settings.h"
@@ -25,6 +28,9 @@ int main(int argc, char** argv) {
       else passtrace::writeTextFile(options.json, text);
       return 0;
     }
+    // --threads caps every oneTBB pool: the renderer's and the structure builds'.
+    std::optional<tbb::global_control> threadLimit;
+    if (options.threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, options.threads);
     passtrace::Progress progress(passtrace::progressMode(options));
     const passtrace::RunReport report = passtrace::runSession(passtrace::toRunSettings(options), progress);
     if (!options.quiet) std::cout << passtrace::summaryText(report, options.stats);

@@ -26,6 +26,8 @@ RunSettings toRunSettings(const Options& o) {
   build.kdMaxDepth = o.kdMaxDepth;
   build.kdStackSize = o.stackSize;
   build.triangleTest = *triangleTestByName(o.triangleTest);  // the parser accepts only valid names
+  build.kdBuilder = *kdBuilderByName(o.kdBuilder);
+  build.kdTermination = *kdTerminationByName(o.kdTermination);
   s.gpu.loopLimit = o.loopLimit;
   s.gpu.gridKernels = o.gridKernels == "split" ? GridKernels::Split : GridKernels::Merged;
   s.gpu.maxPageTexels = o.pageTexels;
@@ -44,7 +46,9 @@ RunSettings toRunSettings(const Options& o) {
       {"--grid-multiplier", BuildParam::GridMultiplier}, {"--kd-min-elements", BuildParam::KdMinElements},
       {"--kd-max-depth", BuildParam::KdMaxDepth},     {"--grid-kernels", BuildParam::GridKernels},
       {"--loop-limit", BuildParam::LoopLimit},        {"--page-texels", BuildParam::PageTexels},
-      {"--triangle-test", BuildParam::TriangleTest},  {"--stack-size", BuildParam::KdStackSize}};
+      {"--triangle-test", BuildParam::TriangleTest},  {"--stack-size", BuildParam::KdStackSize},
+      {"--kd-builder", BuildParam::KdBuilder},
+      {"--kd-termination", BuildParam::KdTermination}};
   for (const std::string& flag : o.givenFlags) s.givenParams.push_back(kFlags.at(flag));
   s.stats = o.stats;
   return s;

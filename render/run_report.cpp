@@ -53,6 +53,8 @@ nlohmann::json toJson(const RunReport& r) {
       {"accel_leaves", r.structure.leaves},
       {"accel_depth", r.structure.depth},
       {"accel_references", r.structure.references},
+      // The structure's cost and memory (0: not computed for this structure).
+      {"structure", {{"sah_cost", r.structure.sahCost}, {"structure_bytes", r.structure.structureBytes}}},
       {"steps", r.steps},
       {"triangle_tests", r.triangleTests},
       {"gl_renderer", orNull(r.glRenderer)},
@@ -87,6 +89,9 @@ std::string summaryText(const RunReport& r, bool withStats) {
   if (withStats) {
     text += format("structure: %s, %zu nodes, %zu leaves, %zu triangle references, depth %u, %.2f floats/triangle\n",
                    s.name.c_str(), s.nodes, s.leaves, s.references, s.depth, s.floatsPerTriangle);
+    text += format("build %.1f ms, SAH cost %s, memory %s\n", s.buildMs,
+                   s.sahCost > 0 ? format("%.2f", s.sahCost).c_str() : "not computed",
+                   s.structureBytes > 0 ? format("%.2f MB", double(s.structureBytes) / 1e6).c_str() : "not computed");
     text += format("per ray: %.2f traversal steps, %.2f triangle tests\n", r.stepsPerRay, r.triangleTestsPerRay);
     text += format("max per pixel (all its rays): %llu traversal steps, %llu triangle tests\n",
                    static_cast<unsigned long long>(r.maxStepsPerRay),

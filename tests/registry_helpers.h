@@ -52,3 +52,21 @@ inline std::vector<std::string> loopLimitFlags(const std::pair<int, std::string>
 }
 
 }  // namespace passtrace::testing_registry
+
+namespace passtrace::testing_registry {
+
+// The rows that read --kd-builder on the CPU and GPU ray tracers, as
+// (renderer id, "-a" argument with "--kd-builder binned" and the termination).
+inline std::vector<std::pair<int, std::string>> kdBinnedRuns() {
+  std::vector<std::pair<int, std::string>> runs;
+  for (RendererId r : {RendererId::Gpu, RendererId::Cpu})
+    for (const Structure& s : structures()) {
+      const auto reads = s.readsOn(r);
+      if (std::find(reads.begin(), reads.end(), BuildParam::KdBuilder) == reads.end()) continue;
+      for (const char* rule : {"thesis", "papay"})
+        runs.emplace_back(int(r), std::string(s.name) + " --kd-builder binned --kd-termination " + rule);
+    }
+  return runs;
+}
+
+}  // namespace passtrace::testing_registry

@@ -7,6 +7,9 @@
 #include <vector>
 
 #include "accel/kd/gpu_kd_traversal.h"
+#include "accel/kd/kd_binned_builder.h"
+#include "accel/kd/kd_sah_cost.h"
+#include "accel/kd/kd_termination.h"
 #include "accel/kd/kd_traversal.h"
 #include "accel/kd/kd_tree.h"
 #include "accel/kd/kd_tree_pbrt_builder.h"
@@ -39,10 +42,8 @@ public:
     stats_.buildMs = buildMs;
     stats_.name = name;
     stats_.floatsPerTriangle = kdFloatsPerTriangle(tree_, tris.size(), kKdRestartStride);
-    stats_.nodes = tree_.nodes.size();
-    stats_.leaves = tree_.leafCount();
-    stats_.references = tree_.references.size();
-    stats_.depth = tree_.depth();
+    setKdTreeStats(stats_, tree_);
+    stats_.structureBytes = tree_.nodes.size() * sizeof(KdNode) + tree_.references.size() * sizeof(uint32_t);
   }
   Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
     return traverseKdTree(tree_, tris_, ray, anyHit, stats, test_);
@@ -94,6 +95,20 @@ KdBuildConfig kdConfigFor(const AccelBuildConfig& config) {
   return kd;
 }
 
+KdTree buildKdTreeFor(std::span<const Triangle> tris, const AccelBuildConfig& config) {
+  const KdBuildConfig kd = kdWithTermination(kdConfigFor(config), config.kdTermination, tris.size());
+  return config.kdBuilder == KdBuilderKind::Binned ? buildKdTreeBinned(tris, kd) : buildKdTree(tris, kd);
+}
+
+void setKdTreeStats(AccelStats& stats, const KdTree& tree) {
+  const KdBuildConfig constants;
+  stats.nodes = tree.nodes.size();
+  stats.leaves = tree.leafCount();
+  stats.references = tree.references.size();
+  stats.depth = tree.depth();
+  stats.sahCost = kdSahCost(tree, constants.traversalCost, constants.intersectionCost);
+}
+
 KdBuildConfig kdPbrtConfigFor(const AccelBuildConfig& config) {
   KdBuildConfig kd = kPbrtKdConfig;
   if (config.kdMaxDepth > 0) kd.maxDepth = config.kdMaxDepth;
@@ -102,7 +117,7 @@ KdBuildConfig kdPbrtConfigFor(const AccelBuildConfig& config) {
 
 KdStreamBuild buildKdStream(KdStreamVariant variant, std::span<const Triangle> tris, const AccelBuildConfig& config) {
   const auto start = std::chrono::steady_clock::now();
-  const KdTree tree = buildKdTree(tris, kdConfigFor(config));
+  const KdTree tree = buildKdTreeFor(tris, config);
   KdStreamBuild build{variant == KdStreamVariant::Backtrack ? flattenKdBacktrack(tree, tris.size())
                                                             : flattenKdRestart(tree, tris.size()),
                       tree.bounds, AccelStats{}, 0};
@@ -110,10 +125,8 @@ KdStreamBuild buildKdStream(KdStreamVariant variant, std::span<const Triangle> t
   s.name = kdStreamName(variant);
   s.buildMs = millisecondsSince(start);
   s.floatsPerTriangle = build.texels.floatsPerTriangle;
-  s.nodes = tree.nodes.size();
-  s.leaves = tree.leafCount();
-  s.references = tree.references.size();
-  s.depth = tree.depth();
+  setKdTreeStats(s, tree);
+  s.structureBytes = (build.texels.nodes.size() + build.texels.lists.size()) * sizeof(glm::vec4);
   // Each leaf is searched at most once (plus a re-entry per backtrack), reached through at most depth nodes.
   // Push-down takes a subset of restart's steps; a stack pop or restart
   // reaches a leaf through at most depth nodes like a restart does.
@@ -131,7 +144,7 @@ KdStreamBuild buildKdStream(KdStreamVariant variant, std::span<const Triangle> t
 
 std::unique_ptr<CpuAccelerator> makeKdTreeCpu(std::span<const Triangle> tris, const AccelBuildConfig& config) {
   const auto start = std::chrono::steady_clock::now();
-  KdTree tree = buildKdTree(tris, kdConfigFor(config));
+  KdTree tree = buildKdTreeFor(tris, config);
   return std::make_unique<KdAccelerator>("kd-tree", std::move(tree), millisecondsSince(start), tris,
                                          config.triangleTest);
 }

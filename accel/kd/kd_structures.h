@@ -1,9 +1,10 @@
 #pragma once
-// The kd-tree family's registry entries. One SAH builder with split clipping
-// (tracy's -e, -d) serves "kd-tree" (CPU stack traversal) and the GPU
-// stream traversals "kd-restart" and "kd-backtrack" (thesis 8.5) and
-// "kd-pushdown", "kd-shortstack", "kd-pushdown-shortstack", "kd-stack"
-// (seed 003 ch. 6; --stack-size for the short stacks), whose CPU
+// The kd-tree family's registry entries. One SAH build with split clipping
+// (tracy's -e, -d; --kd-builder exact|binned, --kd-termination thesis|papay:
+// buildKdTreeFor) serves "kd-tree" (CPU stack traversal) and the GPU stream
+// traversals "kd-restart" and "kd-backtrack" (thesis 8.5) and "kd-pushdown",
+// "kd-shortstack", "kd-pushdown-shortstack", "kd-stack" (seed 003 ch. 6;
+// --stack-size for the short stacks), whose CPU
 // forms are the kernels' own algorithms over the GPU's texels
 // (kd_stream_traversal.h). "kd-pbrt" is built the pbrt way with pbrt's
 // constants (a nonzero -d overrides pbrt's depth; -e is not read since pbrt's
@@ -24,6 +25,16 @@ namespace passtrace {
 
 // The SAH builder's config (kdMinElements, kdMaxDepth).
 KdBuildConfig kdConfigFor(const AccelBuildConfig& config);
+
+// The one kd build of every row but kd-pbrt: the exact or binned SAH builder
+// (kdBuilder) with the thesis's or the seed's termination (kdTermination).
+KdTree buildKdTreeFor(std::span<const Triangle> tris, const AccelBuildConfig& config);
+
+// Fills the tree's counts and SAH cost (kd_sah_cost.h, the SAH builders'
+// constants) into `stats`; structureBytes is the caller's, as it depends on
+// the layout traversed.
+void setKdTreeStats(AccelStats& stats, const KdTree& tree);
+
 // pbrt's config, with kdMaxDepth when nonzero.
 KdBuildConfig kdPbrtConfigFor(const AccelBuildConfig& config);
 

@@ -6,6 +6,8 @@
 #include <utility>
 #include <vector>
 
+#include "accel/kd/kd_build_driver.h"
+
 namespace passtrace {
 
 int kdDefaultMaxDepth(size_t triangleCount) {
@@ -19,67 +21,6 @@ int kdEffectiveMaxDepth(const KdBuildConfig& config, size_t triangleCount) {
 }
 
 namespace {
-
-// A triangle as one node sees it: its bounds clipped to the node's voxel.
-struct Ref {
-  uint32_t tri;
-  Aabb bounds;
-};
-
-// One node still to build. Right children wait on the stack while the left
-// subtree is built, which gives the depth-first layout.
-struct WorkItem {
-  std::vector<Ref> refs;
-  Aabb voxel;
-  int depth = 0;              // splits above this node
-  uint32_t parent = kNoHit;
-  bool isRight = false;       // tell the parent where its right child went
-};
-
-Aabb intersection(const Aabb& a, const Aabb& b) { return Aabb{glm::max(a.min, b.min), glm::min(a.max, b.max)}; }
-
-bool contains(const Aabb& outer, const Aabb& inner) {
-  return glm::all(glm::lessThanEqual(outer.min, inner.min)) && glm::all(glm::lessThanEqual(inner.max, outer.max));
-}
-
-// Sutherland–Hodgman: the bounds of the part of `tri` inside the closed box,
-// cut to the box (rounding may put an intersection point a hair outside).
-// Empty when the triangle misses the box. At most 3 + 6 vertices survive.
-Aabb clipTriangleToBox(const Triangle& tri, const Aabb& box) {
-  glm::vec3 bufA[12] = {tri.v0, tri.v1, tri.v2}, bufB[12];
-  glm::vec3* in = bufA;
-  glm::vec3* out = bufB;
-  int n = 3;
-  for (int axis = 0; axis < 3 && n > 0; ++axis) {
-    for (int side = 0; side < 2 && n > 0; ++side) {
-      const float plane = side == 0 ? box.min[axis] : box.max[axis];
-      auto inside = [&](const glm::vec3& p) { return side == 0 ? p[axis] - plane : plane - p[axis]; };
-      int m = 0;
-      for (int i = 0; i < n; ++i) {
-        const glm::vec3& cur = in[i];
-        const glm::vec3& next = in[(i + 1) % n];
-        const float dc = inside(cur), dn = inside(next);
-        if (dc >= 0.0f) out[m++] = cur;
-        if ((dc > 0.0f && dn < 0.0f) || (dc < 0.0f && dn > 0.0f)) {
-          glm::vec3 p = cur + (dc / (dc - dn)) * (next - cur);
-          p[axis] = plane;  // exactly on the plane, whatever the rounding
-          out[m++] = p;
-        }
-      }
-      n = m;
-      std::swap(in, out);
-    }
-  }
-  Aabb bounds;
-  for (int i = 0; i < n; ++i) bounds.extend(in[i]);
-  return n == 0 ? bounds : intersection(bounds, box);
-}
-
-struct Split {
-  int axis = -1;
-  float position = 0.0f;
-  float cost = kInfinity;
-};
 
 // Floats as unsigned keys that sort in the same order (negative floats have
 // all bits flipped, positive ones their sign bit set). -0 is made +0 first
@@ -121,9 +62,9 @@ struct Scratch {
 // leaves one child with everything). With the closed-voxel rule,
 // N_L(p) = #{min <= p} and N_R(p) = #{max >= p}: one merged walk over the
 // sorted mins and maxes.
-Split findSplit(const std::vector<Ref>& refs, const Aabb& voxel, const KdBuildConfig& config, float minThickness,
-                Scratch& s) {
-  Split best;
+KdSplit findSplit(std::span<const KdRef> refs, const Aabb& voxel, const KdBuildConfig& config, float minThickness) {
+  thread_local Scratch s;  // reused by every node this thread splits
+  KdSplit best;
   const glm::vec3 e = voxel.extent();
   const float area = voxel.surfaceArea();
   if (!(area > 0.0f)) return best;  // a point or segment voxel: nothing to weigh
@@ -157,7 +98,7 @@ Split findSplit(const std::vector<Ref>& refs, const Aabb& voxel, const KdBuildCo
         const float bonus = (nLeft == 0 || nRight == 0) ? config.emptyBonus : 0.0f;
         const float cost = config.traversalCost + config.intersectionCost * (1.0f - bonus) * invArea *
                                                       (areaLeft * float(nLeft) + areaRight * float(nRight));
-        if (cost < best.cost) best = Split{axis, pF, cost};
+        if (cost < best.cost) best = KdSplit{axis, pF, cost};
       }
       while (j < n && maxs[j] <= p) ++j;
     }
@@ -165,83 +106,10 @@ Split findSplit(const std::vector<Ref>& refs, const Aabb& voxel, const KdBuildCo
   return best;
 }
 
-// The bounds of a triangle in a child voxel, given its bounds in the parent.
-// Only a triangle reaching past the new plane changes; its clipped region
-// can only shrink, so the old bounds cap the new ones, and when rounding
-// clips everything away the old bounds cut to the child stand in (the
-// triangle does touch the child's closed voxel, by classification).
-Aabb childBounds(const Triangle& tri, const Aabb& old, const Aabb& child, bool splitClipping) {
-  if (contains(child, old)) return old;
-  const Aabb cut = intersection(old, child);
-  if (!splitClipping) return cut;
-  const Aabb clipped = intersection(clipTriangleToBox(tri, child), old);
-  return clipped.empty() ? cut : clipped;
-}
-
 }  // namespace
 
 KdTree buildKdTree(std::span<const Triangle> tris, const KdBuildConfig& config) {
-  KdTree tree;
-  if (tris.empty()) return tree;
-  const int maxDepth = kdEffectiveMaxDepth(config, tris.size());
-  const size_t minElements = static_cast<size_t>(std::max(config.minElements, 0));
-
-  WorkItem root;
-  root.refs.reserve(tris.size());
-  for (uint32_t t = 0; t < tris.size(); ++t) {
-    root.refs.push_back({t, tris[t].bounds()});
-    tree.bounds.extend(root.refs.back().bounds);
-  }
-  root.voxel = tree.bounds;
-  const float minThickness = config.minVoxelFraction * glm::length(tree.bounds.extent());
-
-  Scratch scratch;  // reused by every findSplit
-  std::vector<WorkItem> stack;
-  stack.push_back(std::move(root));
-  while (!stack.empty()) {
-    WorkItem item = std::move(stack.back());
-    stack.pop_back();
-    const auto index = static_cast<uint32_t>(tree.nodes.size());
-    KdNode node;
-    node.parent = item.parent;
-    node.box = item.voxel;
-    if (item.isRight) tree.nodes[item.parent].rightChild = index;
-
-    const size_t n = item.refs.size();
-    Split split;
-    if (n > minElements && item.depth < maxDepth) split = findSplit(item.refs, item.voxel, config, minThickness, scratch);
-    const float leafCost = config.intersectionCost * static_cast<float>(n);
-    if (split.axis < 0 || !(split.cost < leafCost)) {
-      node.firstRef = static_cast<uint32_t>(tree.references.size());
-      node.refCount = static_cast<uint32_t>(n);
-      for (const Ref& r : item.refs) tree.references.push_back(r.tri);
-      tree.nodes.push_back(node);
-      continue;
-    }
-
-    const int axis = split.axis;
-    const float p = split.position;
-    node.axis = static_cast<uint32_t>(axis);
-    node.split = p;
-    tree.nodes.push_back(node);
-
-    WorkItem left, right;
-    left.voxel = right.voxel = item.voxel;
-    left.voxel.max[axis] = right.voxel.min[axis] = p;
-    left.depth = right.depth = item.depth + 1;
-    left.parent = right.parent = index;
-    right.isRight = true;
-    for (const Ref& r : item.refs) {
-      if (r.bounds.min[axis] <= p)
-        left.refs.push_back({r.tri, childBounds(tris[r.tri], r.bounds, left.voxel, config.splitClipping)});
-      if (r.bounds.max[axis] >= p)
-        right.refs.push_back({r.tri, childBounds(tris[r.tri], r.bounds, right.voxel, config.splitClipping)});
-    }
-    item.refs = {};  // free before the subtrees grow
-    stack.push_back(std::move(right));
-    stack.push_back(std::move(left));  // popped next: index + 1
-  }
-  return tree;
+  return buildKdTreeWith(tris, config, findSplit);
 }
 
 }  // namespace passtrace

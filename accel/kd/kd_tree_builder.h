@@ -16,7 +16,9 @@
 // O(N log N) like the Wald–Havran presorted sweep without its bookkeeping
 // (re-sorting and merging the events of clipped straddlers). Only triangles
 // straddling a split are clipped again for the children, since the others'
-// clipped bounds do not change. Work is kept on an explicit stack.
+// clipped bounds do not change. The node loop, clipping and the parallel
+// build are kd_build_driver.h's, shared with the binned builder
+// (kd_binned_builder.h); this file holds the exact plane search.
 // A 100,000-triangle soup builds in about 0.65 s of CPU time (one EPYC core).
 
 #include <cstddef>

@@ -17,14 +17,18 @@ namespace passtrace {
 namespace {
 
 // Every stream structure of the registry, with each --grid-kernels variant
-// it reads and stack sizes 1, 4 and 8 where it reads --stack-size, under both
-// triangle tests.
+// it reads, under both triangle tests; and, under Moller-Trumbore only (the
+// variants change the tree or the stack, not the triangle test), stack sizes
+// 1 and 8 where it reads --stack-size and the binned kd build with thesis and
+// papay termination where it reads --kd-builder.
 struct GpuCase {
   const Structure* structure;
   GridKernels gridKernels;
   std::string name;
   TriangleTest triangleTest = TriangleTest::MollerTrumbore;
   int stackSize = AccelBuildConfig{}.kdStackSize;
+  KdBuilderKind kdBuilder = KdBuilderKind::Exact;
+  KdTermination kdTermination = KdTermination::Thesis;
 };
 
 const std::vector<GpuCase>& gpuCases() {
@@ -40,8 +44,16 @@ const std::vector<GpuCase>& gpuCases() {
         const auto reads = s.readsOn(RendererId::Gpu);
         if (std::find(reads.begin(), reads.end(), BuildParam::GridKernels) != reads.end())
           cases.push_back({&s, GridKernels::Split, name + "_split" + suffix, test});
+        if (test != TriangleTest::MollerTrumbore) continue;
         if (std::find(reads.begin(), reads.end(), BuildParam::KdStackSize) != reads.end())
-          for (int k : {1, 8}) cases.push_back({&s, GridKernels::Merged, name + "_stack" + std::to_string(k) + suffix, test, k});
+          for (int k : {1, 8})
+            cases.push_back({&s, GridKernels::Merged, name + "_stack" + std::to_string(k), test, k});
+        if (std::find(reads.begin(), reads.end(), BuildParam::KdBuilder) != reads.end()) {
+          const int k = AccelBuildConfig{}.kdStackSize;
+          cases.push_back({&s, GridKernels::Merged, name + "_binned", test, k, KdBuilderKind::Binned});
+          cases.push_back({&s, GridKernels::Merged, name + "_binned_papay", test, k, KdBuilderKind::Binned,
+                           KdTermination::Papay});
+        }
       }
     return cases;
   }();
@@ -61,6 +73,8 @@ TEST_P(GpuTraversalAgreement, SameHitsAsBruteForceAndSameStepsAsTheCpu) {
   AccelBuildConfig build;
   build.triangleTest = c.triangleTest;
   build.kdStackSize = c.stackSize;
+  build.kdBuilder = c.kdBuilder;
+  build.kdTermination = c.kdTermination;
   // The CPU running the same algorithm over the same data.
   const auto cpu = makeMirrorStructure(*c.structure, scene.triangles, build);
 

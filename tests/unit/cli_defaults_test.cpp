@@ -38,6 +38,8 @@ TEST(CliDefaults, EqualTheRegistrysBuildParameterDefaults) {
   EXPECT_EQ(number(double(o.pageTexels)), value(BuildParam::PageTexels));
   EXPECT_EQ(o.triangleTest, value(BuildParam::TriangleTest));
   EXPECT_EQ(number(o.stackSize), value(BuildParam::KdStackSize));
+  EXPECT_EQ(o.kdBuilder, value(BuildParam::KdBuilder));
+  EXPECT_EQ(o.kdTermination, value(BuildParam::KdTermination));
 }
 
 TEST(CliDefaults, EveryBuildParameterHasAFlagAndADefault) {

@@ -35,29 +35,6 @@ std::vector<const Structure*> cpuStructures() {
   return rows;
 }
 
-// Each CPU row once, and the rows reading --stack-size also with 1 and 8
-// entries (4 is the default).
-struct CpuCase {
-  const Structure* structure;
-  int stackSize;
-  std::string name;
-};
-const std::vector<CpuCase>& cpuCases() {
-  static const std::vector<CpuCase> cases = [] {
-  std::vector<CpuCase> cases;
-  for (const Structure* s : cpuStructures()) {
-    std::string name(s->name);
-    std::replace(name.begin(), name.end(), '-', '_');
-    cases.push_back({s, AccelBuildConfig{}.kdStackSize, name});
-    const auto reads = s->readsOn(RendererId::Cpu);
-    if (std::find(reads.begin(), reads.end(), BuildParam::KdStackSize) != reads.end())
-      for (int k : {1, 8}) cases.push_back({s, k, name + "_stack" + std::to_string(k)});
-  }
-  return cases;
-  }();
-  return cases;
-}
-
 // Rays whose origins lie exactly on cell boundary planes (computed as the
 // grid computes them), in random, axis-aligned and plane-parallel
 // directions, some lying in the plane they start on, some aimed inside.
@@ -138,6 +115,42 @@ Agreement compareWithBruteForce(const Structure& s, const CpuAccelerator& accel,
   return a;
 }
 
+// Every CPU row with its default build, plus stack sizes 1 and 8 of the rows
+// that read --stack-size and the binned SAH build (with the thesis's and the
+// seed's termination) of the rows that read --kd-builder.
+struct CpuCase {
+  const Structure* structure;
+  AccelBuildConfig config;
+  std::string name;
+};
+
+const std::vector<CpuCase>& cpuCases() {
+  static const std::vector<CpuCase> cases = [] {
+    std::vector<CpuCase> cases;
+    for (const Structure* s : cpuStructures()) {
+      std::string name(s->name);
+      std::replace(name.begin(), name.end(), '-', '_');
+      cases.push_back({s, AccelBuildConfig{}, name});
+      const auto reads = s->readsOn(RendererId::Cpu);
+      if (std::find(reads.begin(), reads.end(), BuildParam::KdStackSize) != reads.end())
+        for (int k : {1, 8}) {
+          AccelBuildConfig config;
+          config.kdStackSize = k;
+          cases.push_back({s, config, name + "_stack" + std::to_string(k)});
+        }
+      if (std::find(reads.begin(), reads.end(), BuildParam::KdBuilder) == reads.end()) continue;
+      for (const KdTermination rule : {KdTermination::Thesis, KdTermination::Papay}) {
+        AccelBuildConfig config;
+        config.kdBuilder = KdBuilderKind::Binned;
+        config.kdTermination = rule;
+        cases.push_back({s, config, name + (rule == KdTermination::Papay ? "_binned_papay" : "_binned")});
+      }
+    }
+    return cases;
+  }();
+  return cases;
+}
+
 class CpuStructureAgreement : public ::testing::TestWithParam<std::tuple<size_t, size_t>> {};
 
 TEST_P(CpuStructureAgreement, SameHitsAsBruteForce) {
@@ -154,11 +167,9 @@ TEST_P(CpuStructureAgreement, SameHitsAsBruteForce) {
     const std::vector<Ray> edge = boundaryRays(grid, 2000, 9);
     rays.insert(rays.end(), edge.begin(), edge.end());
   }
-  AccelBuildConfig config;
-  config.kdStackSize = c.stackSize;
-  const auto accel = makeCpuStructure(s, tris, config);
+  const auto accel = makeCpuStructure(s, tris, c.config);
   const Agreement a = compareWithBruteForce(s, *accel, tris, rays);
-  const std::string what = mesh.name + " / " + accel->name();
+  const std::string what = mesh.name + " / " + c.name;
   EXPECT_EQ(a.foundMismatch, 0u) << what;
   EXPECT_EQ(a.tieMismatch, 0u) << what;
   EXPECT_EQ(a.bogusAnyHit, 0u) << what;
