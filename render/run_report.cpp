@@ -91,7 +91,9 @@ std::string summaryText(const RunReport& r, bool withStats) {
                    s.name.c_str(), s.nodes, s.leaves, s.references, s.depth, s.floatsPerTriangle);
     text += format("build %.1f ms, SAH cost %s, memory %s\n", s.buildMs,
                    s.sahCost > 0 ? format("%.2f", s.sahCost).c_str() : "not computed",
-                   s.structureBytes > 0 ? format("%.2f MB", double(s.structureBytes) / 1e6).c_str() : "not computed");
+                   s.structureBytes == 0    ? "not computed"
+                   : s.structureBytes < 1e6 ? format("%.1f KB", double(s.structureBytes) / 1e3).c_str()
+                                             : format("%.2f MB", double(s.structureBytes) / 1e6).c_str());
     text += format("per ray: %.2f traversal steps, %.2f triangle tests\n", r.stepsPerRay, r.triangleTestsPerRay);
     text += format("max per pixel (all its rays): %llu traversal steps, %llu triangle tests\n",
                    static_cast<unsigned long long>(r.maxStepsPerRay),

@@ -24,10 +24,12 @@ struct Bins {
 };
 
 // Bin of coordinate x: floor((x - lo) * scale), clamped (a clipped bound
-// lies inside the voxel, but rounding may put it a hair outside a bin range).
+// lies inside the voxel, but rounding may put it a hair outside a bin
+// range, and a denormal-thin voxel makes scale infinite).
 int binOf(float x, float lo, float scale, int binCount) {
   const float b = (x - lo) * scale;
-  return b <= 0.0f ? 0 : std::min(static_cast<int>(b), binCount - 1);
+  if (!(b > 0.0f)) return 0;  // NaN too
+  return b < float(binCount) ? static_cast<int>(b) : binCount - 1;
 }
 
 void binRefs(std::span<const KdRef> refs, const Aabb& voxel, const glm::vec3& scale, const bool* axes, int binCount,

@@ -63,7 +63,11 @@ struct Scratch {
 // N_L(p) = #{min <= p} and N_R(p) = #{max >= p}: one merged walk over the
 // sorted mins and maxes.
 KdSplit findSplit(std::span<const KdRef> refs, const Aabb& voxel, const KdBuildConfig& config, float minThickness) {
-  thread_local Scratch s;  // reused by every node this thread splits
+  // Small nodes, by far the most, reuse their thread's arrays; a large node
+  // gets its own, so that no thread keeps the root's size after the build.
+  thread_local Scratch reused;
+  Scratch own;
+  Scratch& s = refs.size() < kKdParallelSweepRefs ? reused : own;
   KdSplit best;
   const glm::vec3 e = voxel.extent();
   const float area = voxel.surfaceArea();

@@ -100,6 +100,10 @@ TEST_F(Cli, StatsAndHeatmapDescribeTheTraversal) {
   EXPECT_NE(r.out.find("max per pixel (all its rays): "), std::string::npos) << r.out;
   EXPECT_GE(j["accel_nodes"].get<double>(), 1.0);
   EXPECT_GE(j["accel_references"].get<double>(), 32.0);
+  // The kd rows' cost and memory: every ray through the box costs at least one node step.
+  EXPECT_NE(r.out.find("SAH cost"), std::string::npos) << r.out;
+  EXPECT_GE(j["structure"]["sah_cost"].get<double>(), 1.0);
+  EXPECT_GE(j["structure"]["structure_bytes"].get<double>(), 16.0 * 3 * j["accel_nodes"].get<double>());
   fs::remove(path("heat.png"));
   fs::remove(path("s.json"));
   expectOneLineError(run("-s cornell -r 0 --heatmap " + path("h.png")), "--heatmap");
