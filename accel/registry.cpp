@@ -37,7 +37,7 @@ std::vector<Structure> makeRows() {
        .description = "kd-tree, SAH with split clipping, stack traversal",
        .renderers = {Cpu}, .number = 2, .numberedOn = {Cpu},
        .cpu = makeKdTreeCpu,
-       .memory = {282, 0}, .reads = {P::KdMinElements, P::KdMaxDepth}},
+       .memory = {282, 0}, .reads = {P::KdMinElements, P::KdMaxDepth, P::Dynamic}},
       {.name = "kd-pbrt", .family = "kd",
        .description = "kd-tree built the pbrt way (pbrt's constants), stack traversal",
        .renderers = {Cpu}, .number = 3, .numberedOn = {Cpu},
@@ -67,12 +67,12 @@ std::vector<Structure> makeRows() {
        .description = "kd-tree, stackless kd-restart (Foley & Sugerman); on the CPU the kernel's algorithm",
        .renderers = {Cpu, Gpu}, .number = 2, .numberedOn = {Gpu},
        .cpu = makeKdRestartMirror, .stream = makeKdRestartStream, .mirror = makeKdRestartMirror,
-       .memory = {394, 358}, .reads = {P::KdMinElements, P::KdMaxDepth}},
+       .memory = {394, 358}, .reads = {P::KdMinElements, P::KdMaxDepth, P::Dynamic}},
       {.name = "kd-backtrack", .family = "kd",
        .description = "kd-tree, stackless kd-backtrack (parent links); on the CPU the kernel's algorithm",
        .renderers = {Cpu, Gpu}, .number = 3, .numberedOn = {Gpu},
        .cpu = makeKdBacktrackMirror, .stream = makeKdBacktrackStream, .mirror = makeKdBacktrackMirror,
-       .memory = {498, 536}, .reads = {P::KdMinElements, P::KdMaxDepth}},
+       .memory = {498, 536}, .reads = {P::KdMinElements, P::KdMaxDepth, P::Dynamic}},
       {.name = "grid-stream", .family = "grid",
        .description = "the GPU uniform-grid kernel's algorithm over its texels, on the CPU",
        .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
@@ -124,6 +124,7 @@ std::string_view buildParamFlag(BuildParam param) {
     case P::LoopLimit: return "-l/--loop-limit";
     case P::PageTexels: return "--page-texels";
     case P::TriangleTest: return "--triangle-test";
+    case P::Dynamic: return "--dynamic";
   }
   return "?";
 }
@@ -147,6 +148,7 @@ std::string buildParamDefault(BuildParam param) {
     case P::LoopLimit: return number(gpu.loopLimit);
     case P::PageTexels: return gpu.maxPageTexels == 0 ? "0 = the largest texture" : number(double(gpu.maxPageTexels));
     case P::TriangleTest: return kTriangleTestNames[int(cpu.triangleTest)];
+    case P::Dynamic: return "rebuild";
   }
   return "?";
 }

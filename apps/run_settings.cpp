@@ -1,5 +1,6 @@
 #include "apps/run_settings.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -37,14 +38,17 @@ RunSettings toRunSettings(const Options& o) {
   for (const auto& t : {o.timeStart, o.timeEnd})
     if (t && !std::isfinite(*t)) throw std::runtime_error("--time-start/--time-end: not a finite time");
   if ((o.timeStart || o.timeEnd) && o.frames == 0) throw std::runtime_error("--time-start and --time-end need --frames");
+  s.dynamic = *dynamicStrategyByName(o.dynamic);  // the parser accepts only valid names
   s.glBackend = parseGlBackend(o.glBackend);
   static const std::map<std::string, BuildParam> kFlags = {
       {"--swap-children", BuildParam::SwapChildren},   {"--gs-tries", BuildParam::GsTries},
       {"--grid-multiplier", BuildParam::GridMultiplier}, {"--kd-min-elements", BuildParam::KdMinElements},
       {"--kd-max-depth", BuildParam::KdMaxDepth},     {"--grid-kernels", BuildParam::GridKernels},
       {"--loop-limit", BuildParam::LoopLimit},        {"--page-texels", BuildParam::PageTexels},
-      {"--triangle-test", BuildParam::TriangleTest}};
+      {"--triangle-test", BuildParam::TriangleTest},  {"--dynamic", BuildParam::Dynamic}};
   for (const std::string& flag : o.givenFlags) s.givenParams.push_back(kFlags.at(flag));
+  if (o.frames == 0 && std::count(s.givenParams.begin(), s.givenParams.end(), BuildParam::Dynamic))
+    throw std::runtime_error("--dynamic chooses how a --frames sequence updates its structure: it needs --frames");
   s.stats = o.stats;
   return s;
 }

@@ -2,6 +2,7 @@
 // kd-restart and kd-backtrack on the GPU (thesis 8.5): an initialisation
 // kernel, then kernels_glsl/kd/kd_traverse.frag pass after pass.
 
+#include <memory>
 #include <vector>
 
 #include "accel/kd/kd_stream_traversal.h"
@@ -15,15 +16,31 @@ struct KdTexels;
 
 class GpuKdTraversal final : public GpuTraversal {
  public:
+  // continueFromHit (--dynamic two-trees, the second tree): the init kernel
+  // starts from the hit a first traversal left in the hit surface, and adds
+  // to its step and test counts (kd_init.frag, KD_CONTINUE).
   GpuKdTraversal(KdStreamVariant variant, const KdTexels& texels, const Aabb& sceneBox,
                  const std::vector<glm::vec4>& triangleTexels, uint64_t maxStepsPerRay, AccelStats stats,
-                 const GpuTraversalConfig& config);
+                 const GpuTraversalConfig& config, bool continueFromHit = false);
   uint64_t trace(InOutStream& rays, uint64_t active, const std::function<uint64_t()>& retire) override;
   AccelStats stats() const override { return stats_; }
 
+  // Dynamic scenes: new data between frames without new kernels (llvmpipe
+  // compiles a kernel on its first draw, which costs far more than a
+  // trace); the traversal kernel is rebuilt only if a stream's page count
+  // changes, since STREAM_PAGES is compiled in.
+  void replaceTree(const KdTexels& texels, const Aabb& sceneBox, uint64_t maxStepsPerRay, AccelStats stats);
+  void replaceTriangles(const std::vector<glm::vec4>& triangleTexels);
+
  private:
-  ConstInputStream nodes_, lists_, triangles_;
-  StreamKernel init_, traverse_;
+  void bindStreams(uint32_t compiledPages);
+
+  KdStreamVariant variant_;
+  GpuTraversalConfig config_;
+  std::unique_ptr<ConstInputStream> nodes_, lists_, triangles_;
+  StreamKernel init_;
+  std::unique_ptr<StreamKernel> traverse_;
+  uint32_t compiledPages_ = 0;  // STREAM_PAGES of traverse_
   AccelStats stats_;
   uint64_t maxPasses_;
 };

@@ -86,15 +86,12 @@ KdBuildConfig kdPbrtConfigFor(const AccelBuildConfig& config) {
   return kd;
 }
 
-KdStreamBuild buildKdStream(KdStreamVariant variant, std::span<const Triangle> tris, const AccelBuildConfig& config) {
-  const auto start = std::chrono::steady_clock::now();
-  const KdTree tree = buildKdTree(tris, kdConfigFor(config));
-  KdStreamBuild build{variant == KdStreamVariant::Restart ? flattenKdRestart(tree, tris.size())
-                                                          : flattenKdBacktrack(tree, tris.size()),
+KdStreamBuild flattenKdStream(KdStreamVariant variant, const KdTree& tree, size_t triangleCount) {
+  KdStreamBuild build{variant == KdStreamVariant::Restart ? flattenKdRestart(tree, triangleCount)
+                                                          : flattenKdBacktrack(tree, triangleCount),
                       tree.bounds, AccelStats{}, 0};
   AccelStats& s = build.stats;
   s.name = variant == KdStreamVariant::Restart ? "kd-restart" : "kd-backtrack";
-  s.buildMs = millisecondsSince(start);
   s.floatsPerTriangle = build.texels.floatsPerTriangle;
   s.nodes = tree.nodes.size();
   s.leaves = tree.leafCount();
@@ -102,6 +99,14 @@ KdStreamBuild buildKdStream(KdStreamVariant variant, std::span<const Triangle> t
   s.depth = tree.depth();
   // Each leaf is searched at most once (plus a re-entry per backtrack), reached through at most depth nodes.
   build.maxStepsPerRay = 2 * (uint64_t(s.leaves) + 1) * (s.depth + 2) + 2 * s.nodes + build.texels.listEntries;
+  return build;
+}
+
+KdStreamBuild buildKdStream(KdStreamVariant variant, std::span<const Triangle> tris, const AccelBuildConfig& config) {
+  const auto start = std::chrono::steady_clock::now();
+  const KdTree tree = buildKdTree(tris, kdConfigFor(config));
+  KdStreamBuild build = flattenKdStream(variant, tree, tris.size());
+  build.stats.buildMs = millisecondsSince(start);
   return build;
 }
 

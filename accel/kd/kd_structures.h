@@ -33,6 +33,9 @@ struct KdStreamBuild {
   uint64_t maxStepsPerRay;  // no ray of a correct traversal takes more steps
 };
 KdStreamBuild buildKdStream(KdStreamVariant variant, std::span<const Triangle> tris, const AccelBuildConfig& config);
+// The flattening half of buildKdStream, for a tree built elsewhere (dynamic
+// scenes: a merged tree, the two trees); stats.buildMs is left 0.
+KdStreamBuild flattenKdStream(KdStreamVariant variant, const KdTree& tree, size_t triangleCount);
 
 // The registry's factories (accel/registry.cpp).
 std::unique_ptr<CpuAccelerator> makeKdTreeCpu(std::span<const Triangle> tris, const AccelBuildConfig& config);
