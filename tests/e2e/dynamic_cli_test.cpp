@@ -33,6 +33,7 @@ std::string numbered(const std::string& stem, int k, const char* extension) {
 struct DynamicRun {
   int renderer;
   std::string accel, strategy;
+  std::string extra = "";  // more flags
 };
 
 class DynamicCli : public test::CliTest, public ::testing::WithParamInterface<DynamicRun> {};
@@ -41,7 +42,7 @@ TEST_P(DynamicCli, EveryFrameHitsEqualBruteForce) {
   const DynamicRun& p = GetParam();
   const auto r = run("-s " + kScene + " -r " + std::to_string(p.renderer) + " -a " + p.accel + " -w " +
                      std::to_string(kSize) + " -b 2 --frames " + std::to_string(kFrames) + " --dynamic " + p.strategy +
-                     " -o " + path("f.png") + " --hits " + path("h.exr") + " --json " + path("f.json"));
+                     " -o " + path("f.png") + " --hits " + path("h.exr") + " --json " + path("f.json") + " " + p.extra);
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("--dynamic " + p.strategy), std::string::npos) << r.out;
   const nlohmann::json j = nlohmann::json::parse(slurp(path("f.json")));
@@ -67,11 +68,14 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(DynamicRun{1, "kd-tree", "rebuild"}, DynamicRun{1, "kd-tree", "two-trees"}, DynamicRun{1, "kd-tree", "merge"},
                       DynamicRun{1, "kd-backtrack", "merge"}, DynamicRun{2, "kd-restart", "rebuild"},
                       DynamicRun{2, "kd-restart", "two-trees"}, DynamicRun{2, "kd-restart", "merge"},
-                      DynamicRun{2, "kd-backtrack", "two-trees"}, DynamicRun{2, "kd-backtrack", "merge"}),
+                      DynamicRun{2, "kd-backtrack", "two-trees"}, DynamicRun{2, "kd-backtrack", "merge"},
+                      // Small pages: the merged tree's page count changes between frames (kernel rebuilt).
+                      DynamicRun{2, "kd-restart", "merge", "--page-texels 1024"}),
     [](const auto& info) {
       std::string name(1, 'r');
       name += char('0' + info.param.renderer);
       name.append("_").append(info.param.accel).append("_").append(info.param.strategy);
+      if (!info.param.extra.empty()) name.append("_paged");
       for (char& c : name)
         if (c == '-') c = '_';
       return name;

@@ -37,6 +37,7 @@ TEST(CliDefaults, EqualTheRegistrysBuildParameterDefaults) {
   EXPECT_EQ(number(o.loopLimit), value(BuildParam::LoopLimit));
   EXPECT_EQ(number(double(o.pageTexels)), value(BuildParam::PageTexels));
   EXPECT_EQ(o.triangleTest, value(BuildParam::TriangleTest));
+  EXPECT_EQ(o.dynamic, value(BuildParam::Dynamic));
 }
 
 TEST(CliDefaults, EveryBuildParameterHasAFlagAndADefault) {
