@@ -69,10 +69,10 @@ class DynamicStream final : public DynamicRenderer {
   double nextFrame() override {
     double ms = trees_.update(scene_.triangles);
     if (!traversal_) {
-      // The first frame makes the kernels; they are compiled on its first draw.
-      const auto start = Clock::now();
+      // The first frame makes the kernels (compiled on its first draw); only
+      // its flattening counts, as in the frames after it.
       traversal_ = std::make_unique<GpuKdDynamicTraversal>(trees_, variant_, scene_.triangles, config_.gpu);
-      ms += millisecondsSince(start);
+      ms += traversal_->firstFlattenMs();
       renderer_ = std::make_unique<GpuRenderer>(scene_, *traversal_, config_.width, config_.height,
                                                 config_.gpu.maxPageTexels);
     } else {

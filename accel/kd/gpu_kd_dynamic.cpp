@@ -10,6 +10,12 @@
 namespace passtrace {
 namespace {
 
+using Clock = std::chrono::steady_clock;
+
+double millisecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
 // Two trees reported as one structure: sizes added, the deeper depth.
 AccelStats combined(const AccelStats& a, const AccelStats& b) {
   AccelStats s = a;
@@ -26,13 +32,17 @@ GpuKdDynamicTraversal::GpuKdDynamicTraversal(const KdDynamicTrees& trees, KdStre
     : trees_(trees), variant_(variant) {
   const std::vector<glm::vec4> triangles = triangleVertexTexels(tris);
   const bool merge = trees.strategy() == DynamicStrategy::Merge;
+  auto start = Clock::now();
   const KdStreamBuild first = flattenKdStream(variant, merge ? trees.mergedTree() : trees.staticTree(), tris.size());
+  if (merge) firstFlattenMs_ = millisecondsSince(start);
   first_ = std::make_unique<GpuKdTraversal>(variant, first.texels, first.sceneBox, triangles, first.maxStepsPerRay,
                                             first.stats, config);
   stats_ = first.stats;
   if (!merge) {
     staticStats_ = first.stats;
+    start = Clock::now();
     const KdStreamBuild second = flattenKdStream(variant, trees.dynamicTree(), tris.size());
+    firstFlattenMs_ = millisecondsSince(start);
     second_ = std::make_unique<GpuKdTraversal>(variant, second.texels, second.sceneBox, triangles,
                                                second.maxStepsPerRay, second.stats, config, true);
     stats_ = combined(staticStats_, second.stats);
@@ -40,10 +50,10 @@ GpuKdDynamicTraversal::GpuKdDynamicTraversal(const KdDynamicTrees& trees, KdStre
 }
 
 double GpuKdDynamicTraversal::update(std::span<const Triangle> tris) {
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = Clock::now();
   const bool merge = trees_.strategy() == DynamicStrategy::Merge;
   const KdStreamBuild build = flattenKdStream(variant_, merge ? trees_.mergedTree() : trees_.dynamicTree(), tris.size());
-  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const double ms = millisecondsSince(start);
   const std::vector<glm::vec4> triangles = triangleVertexTexels(tris);
   GpuKdTraversal& frameTree = merge ? *first_ : *second_;
   frameTree.replaceTree(build.texels, build.sceneBox, build.maxStepsPerRay, build.stats);

@@ -28,6 +28,10 @@ class GpuKdDynamicTraversal final : public GpuTraversal {
   // counted, as a rebuild's build_ms does not count it).
   double update(std::span<const Triangle> tris);
 
+  // The milliseconds the constructor spent flattening the frame's tree (the
+  // merged or the dynamic one), as update() returns them.
+  double firstFlattenMs() const { return firstFlattenMs_; }
+
   uint64_t trace(InOutStream& rays, uint64_t active, const std::function<uint64_t()>& retire) override;
   AccelStats stats() const override { return stats_; }
 
@@ -38,6 +42,7 @@ class GpuKdDynamicTraversal final : public GpuTraversal {
   std::unique_ptr<GpuKdTraversal> second_;  // two-trees: the dynamic tree
   AccelStats stats_;
   AccelStats staticStats_;
+  double firstFlattenMs_ = 0;
 };
 
 }  // namespace passtrace
