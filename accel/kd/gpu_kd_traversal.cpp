@@ -40,11 +40,16 @@ GpuKdTraversal::GpuKdTraversal(KdStreamVariant variant, const KdTexels& texels, 
 void GpuKdTraversal::bindStreams(uint32_t compiledPages) {
   const uint32_t pages = std::max({1u, nodes_->pageCount(), lists_->pageCount(), triangles_->pageCount()});
   if (pages != compiledPages) {
-    traverse_ = std::make_unique<StreamKernel>(
-        variant_ == KdStreamVariant::Backtrack ? "kd_backtrack" : "kd_restart", "kd/kd_traverse.frag",
-        StreamKernel::Depth::Test,
-        defines(variant_, streamPagesDefine({nodes_.get(), lists_.get(), triangles_.get()}), config_.build.triangleTest));
-    traverse_->set("uLoopLimit", config_.loopLimit);
+    std::unique_ptr<StreamKernel>& kernel = traverseByPages_[pages];
+    if (!kernel) {
+      kernel = std::make_unique<StreamKernel>(
+          variant_ == KdStreamVariant::Backtrack ? "kd_backtrack" : "kd_restart", "kd/kd_traverse.frag",
+          StreamKernel::Depth::Test,
+          defines(variant_, streamPagesDefine({nodes_.get(), lists_.get(), triangles_.get()}),
+                  config_.build.triangleTest));
+      kernel->set("uLoopLimit", config_.loopLimit);
+    }
+    traverse_ = kernel.get();
     compiledPages_ = pages;
   }
   traverse_->bindInput("uNodes", *nodes_);

@@ -2,6 +2,7 @@
 // kd-restart and kd-backtrack on the GPU (thesis 8.5): an initialisation
 // kernel, then kernels_glsl/kd/kd_traverse.frag pass after pass.
 
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -28,7 +29,7 @@ class GpuKdTraversal final : public GpuTraversal {
   // Dynamic scenes: new data between frames without new kernels (llvmpipe
   // compiles a kernel on its first draw, which costs far more than a
   // trace); the traversal kernel is rebuilt only if a stream's page count
-  // changes, since STREAM_PAGES is compiled in.
+  // changes, since STREAM_PAGES is compiled in (and kept for that count).
   void replaceTree(const KdTexels& texels, const Aabb& sceneBox, uint64_t maxStepsPerRay, AccelStats stats);
   void replaceTriangles(const std::vector<glm::vec4>& triangleTexels);
 
@@ -39,8 +40,9 @@ class GpuKdTraversal final : public GpuTraversal {
   GpuTraversalConfig config_;
   std::unique_ptr<ConstInputStream> nodes_, lists_, triangles_;
   StreamKernel init_;
-  std::unique_ptr<StreamKernel> traverse_;
-  uint32_t compiledPages_ = 0;  // STREAM_PAGES of traverse_
+  std::map<uint32_t, std::unique_ptr<StreamKernel>> traverseByPages_;  // by STREAM_PAGES
+  StreamKernel* traverse_ = nullptr;  // the one for the current streams
+  uint32_t compiledPages_ = 0;        // its STREAM_PAGES
   AccelStats stats_;
   uint64_t maxPasses_;
 };
