@@ -44,6 +44,9 @@ void GpuRenderer::trianglesMoved() {
   // Same size, same pages: the shading kernel's STREAM_PAGES still holds.
   triangles_ = std::make_unique<ConstInputStream>(triangleShadingTexels(scene_), "triangle shading data", maxPageTexels_);
   shade_.bindInput("uTriangles", *triangles_);
+  shade_.set("uLightPosition", scene_.light.position);  // an animated light follows too
+  shade_.set("uLightColor", scene_.light.color);
+  shade_.set("uEpsilon", secondaryRayEpsilon(scene_));  // it follows the scene's bounds
 }
 
 uint64_t GpuRenderer::retireFinished() { return cull_.execute(true); }

@@ -28,7 +28,7 @@ class GpuRenderer {
   InOutStream& rays() { return rays_; }
 
   // The scene's triangles moved (--frames with --dynamic, the same count):
-  // re-uploads their shading data; the kernels stay compiled.
+  // re-uploads their shading data and the light; the kernels stay compiled.
   void trianglesMoved();
 
  private:
