@@ -52,13 +52,16 @@ class Merger {
 
     std::optional<Plane> plane;
     uint32_t sLeft = s, sRight = s, dLeft = d, dRight = d;
+    // The static tree's planes first, down to its leaves; then, inside a
+    // static leaf, the dynamic tree's bounds and planes.
     if (level + 1 < kKdDepthLimit) {
-      if (s != kNoHit) plane = boundingCut(region, s_.bounds);
-      if (!plane && d != kNoHit) plane = boundingCut(region, d_.bounds);
+      if (s != kNoHit) plane = boundingCut(region, s_.bounds);  // the root, where the dynamic tree sticks out
       if (!plane && s != kNoHit && !s_.nodes[s].isLeaf()) {
         plane = Plane{s_.nodes[s].axis, s_.nodes[s].split};
         sLeft = s + 1, sRight = s_.nodes[s].rightChild;
-      } else if (!plane && d != kNoHit && !d_.nodes[d].isLeaf()) {
+      }
+      if (!plane && d != kNoHit) plane = boundingCut(region, d_.bounds);
+      if (!plane && d != kNoHit && !d_.nodes[d].isLeaf()) {
         plane = Plane{d_.nodes[d].axis, d_.nodes[d].split};
         dLeft = d + 1, dRight = d_.nodes[d].rightChild;
       }
