@@ -37,7 +37,7 @@ std::vector<Structure> makeRows() {
        .description = "kd-tree, SAH with split clipping, stack traversal",
        .renderers = {Cpu}, .number = 2, .numberedOn = {Cpu},
        .cpu = makeKdTreeCpu,
-       .memory = {282, 0}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination}},
+       .memory = {282, 0}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination, P::Dynamic}},
       {.name = "kd-pbrt", .family = "kd",
        .description = "kd-tree built the pbrt way (pbrt's constants), stack traversal",
        .renderers = {Cpu}, .number = 3, .numberedOn = {Cpu},
@@ -67,12 +67,12 @@ std::vector<Structure> makeRows() {
        .description = "kd-tree, stackless kd-restart (Foley & Sugerman); on the CPU the kernel's algorithm",
        .renderers = {Cpu, Gpu}, .number = 2, .numberedOn = {Gpu},
        .cpu = makeKdRestartMirror, .stream = makeKdRestartStream, .mirror = makeKdRestartMirror,
-       .memory = {394, 358}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination}},
+       .memory = {394, 358}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination, P::Dynamic}},
       {.name = "kd-backtrack", .family = "kd",
        .description = "kd-tree, stackless kd-backtrack (parent links); on the CPU the kernel's algorithm",
        .renderers = {Cpu, Gpu}, .number = 3, .numberedOn = {Gpu},
        .cpu = makeKdBacktrackMirror, .stream = makeKdBacktrackStream, .mirror = makeKdBacktrackMirror,
-       .memory = {498, 536}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination}},
+       .memory = {498, 536}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination, P::Dynamic}},
       // Seed 003 ch. 6 (Horn et al. 2007), over kd-restart's tree and texels.
       // Memory measured for kd-pushdown and kd-stack (both 416 / 383; kd-restart
       // measured 416 / 383 in the same session); the short stacks hold the same
@@ -83,7 +83,7 @@ std::vector<Structure> makeRows() {
        .cpu = makeKdStreamMirror<KdStreamVariant::PushDown>,
        .stream = makeKdStream<KdStreamVariant::PushDown>,
        .mirror = makeKdStreamMirror<KdStreamVariant::PushDown>,
-       .memory = {416, 383}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination}},
+       .memory = {416, 383}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination, P::Dynamic}},
       {.name = "kd-shortstack", .family = "kd",
        .description = "kd-tree, circular short stack (--stack-size), restart when empty; on the CPU the kernel's "
                       "algorithm",
@@ -92,7 +92,7 @@ std::vector<Structure> makeRows() {
        .stream = makeKdStream<KdStreamVariant::ShortStack>,
        .mirror = makeKdStreamMirror<KdStreamVariant::ShortStack>,
        .memory = {416, 383}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination,
-                                         P::KdStackSize}},
+                                         P::KdStackSize, P::Dynamic}},
       {.name = "kd-pushdown-shortstack", .family = "kd",
        .description = "kd-tree, short stack restarting from the push-down root; on the CPU the kernel's algorithm",
        .renderers = {Cpu, Gpu}, .number = std::nullopt, .numberedOn = {},
@@ -100,7 +100,7 @@ std::vector<Structure> makeRows() {
        .stream = makeKdStream<KdStreamVariant::PushDownShortStack>,
        .mirror = makeKdStreamMirror<KdStreamVariant::PushDownShortStack>,
        .memory = {416, 383}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination,
-                                         P::KdStackSize}},
+                                         P::KdStackSize, P::Dynamic}},
       {.name = "kd-stack", .family = "kd",
        .description = "kd-tree, full stack (as deep as the tree) in a per-ray storage buffer; on the CPU the "
                       "kernel's algorithm",
@@ -108,7 +108,7 @@ std::vector<Structure> makeRows() {
        .cpu = makeKdStreamMirror<KdStreamVariant::Stack>,
        .stream = makeKdStream<KdStreamVariant::Stack>,
        .mirror = makeKdStreamMirror<KdStreamVariant::Stack>,
-       .memory = {416, 383}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination}},
+       .memory = {416, 383}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination, P::Dynamic}},
       {.name = "grid-stream", .family = "grid",
        .description = "the GPU uniform-grid kernel's algorithm over its texels, on the CPU",
        .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
@@ -163,6 +163,7 @@ std::string_view buildParamFlag(BuildParam param) {
     case P::KdStackSize: return "--stack-size";
     case P::KdBuilder: return "--kd-builder";
     case P::KdTermination: return "--kd-termination";
+    case P::Dynamic: return "--dynamic";
   }
   return "?";
 }
@@ -189,6 +190,7 @@ std::string buildParamDefault(BuildParam param) {
     case P::KdStackSize: return number(cpu.kdStackSize);
     case P::KdBuilder: return std::string(kKdBuilderNames[int(cpu.kdBuilder)]);
     case P::KdTermination: return std::string(kKdTerminationNames[int(cpu.kdTermination)]);
+    case P::Dynamic: return "rebuild";
   }
   return "?";
 }

@@ -58,6 +58,7 @@ enum class BuildParam {
   KdStackSize,     // --stack-size: kd short-stack entries (kdStackSize)
   KdBuilder,       // --kd-builder: exact or binned SAH (kdBuilder)
   KdTermination,   // --kd-termination: thesis (-e/-d) or papay (kdTermination)
+  Dynamic,         // --dynamic: a --frames sequence's strategy (kd rows, accel/kd/kd_dynamic.h)
 };
 // The flag a parameter is given with, as --help shows it ("-g/--grid-multiplier").
 std::string_view buildParamFlag(BuildParam param);
@@ -68,7 +69,8 @@ inline constexpr BuildParam kBuildParams[] = {
     BuildParam::SwapChildren,  BuildParam::GsTries,   BuildParam::GridMultiplier,
     BuildParam::KdMinElements, BuildParam::KdMaxDepth, BuildParam::GridKernels,
     BuildParam::LoopLimit,     BuildParam::PageTexels, BuildParam::TriangleTest,
-    BuildParam::KdStackSize,   BuildParam::KdBuilder,  BuildParam::KdTermination};
+    BuildParam::KdStackSize,   BuildParam::KdBuilder,  BuildParam::KdTermination,
+    BuildParam::Dynamic};
 
 // Peak resident bytes per triangle of a run, measured (apps' memory check):
 // the slope between 1 M and 2 M triangles of the procedural "spheres" scene,

@@ -120,9 +120,14 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
                "terminal)");
   app.add_option("--frames", o.frames,
                  "render N frames evenly over --time-start..--time-end (default: the scene's animation range), "
-                 "rebuilding the structure each frame: -o NAME.png writes NAME_0000.png ... (default frame_0000.png); "
-                 "--json reports each frame's build and trace times")
+                 "rebuilding the structure each frame (see --dynamic): -o NAME.png writes NAME_0000.png ... (default "
+                 "frame_0000.png), --hits NAME.exr NAME_0000.exr ...; --json reports each frame's build and trace times")
       ->check(CLI::Range(1, 100000));
+  app.add_option("--dynamic", o.dynamic,
+                 "with --frames, kd rows: rebuild one tree each frame; two-trees: a static tree built once and a "
+                 "tree over the moving triangles each frame, both traced; merge: the moving triangles' tree merged "
+                 "into the static tree each frame")
+      ->check(CLI::IsMember({"rebuild", "two-trees", "merge"}))->capture_default_str();
   app.add_option("--time-start", o.timeStart, "first time of --frames (default: the animation's start)");
   app.add_option("--time-end", o.timeEnd, "last time of --frames (default: the animation's end)");
   app.add_option("--export", o.exportPath,
@@ -161,7 +166,7 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
   o.accelGiven = app.count("--accel") > 0;
   for (const char* flag : {"--swap-children", "--gs-tries", "--grid-multiplier", "--kd-min-elements", "--kd-max-depth",
                            "--grid-kernels", "--loop-limit", "--page-texels", "--triangle-test", "--stack-size",
-                           "--kd-builder", "--kd-termination"})
+                           "--kd-builder", "--kd-termination", "--dynamic"})
     if (app.count(flag)) o.givenFlags.emplace_back(flag);
   return 0;
 }

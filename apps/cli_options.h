@@ -56,6 +56,7 @@ struct Options {
   std::string exportPath;           // --export: write the scene's triangles (.obj/.gltf/.glb) and exit
   int frames = 0;                   // --frames N: render a sequence over the animation (0: one frame at --time)
   std::optional<float> timeStart, timeEnd;  // --time-start/--time-end (default: the scene's animation range)
+  std::string dynamic = "rebuild";  // --dynamic: rebuild, two-trees or merge (with --frames, kd rows)
   bool stats = false;               // --stats: print structure and per-ray statistics
   bool quiet = false;               // -q: print nothing but errors
   bool progress = false;            // --progress: stages on stderr even when it is no terminal

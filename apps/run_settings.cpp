@@ -1,5 +1,6 @@
 #include "apps/run_settings.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -40,6 +41,7 @@ RunSettings toRunSettings(const Options& o) {
   for (const auto& t : {o.timeStart, o.timeEnd})
     if (t && !std::isfinite(*t)) throw std::runtime_error("--time-start/--time-end: not a finite time");
   if ((o.timeStart || o.timeEnd) && o.frames == 0) throw std::runtime_error("--time-start and --time-end need --frames");
+  s.dynamic = *dynamicStrategyByName(o.dynamic);  // the parser accepts only valid names
   s.glBackend = parseGlBackend(o.glBackend);
   static const std::map<std::string, BuildParam> kFlags = {
       {"--swap-children", BuildParam::SwapChildren},   {"--gs-tries", BuildParam::GsTries},
@@ -48,8 +50,11 @@ RunSettings toRunSettings(const Options& o) {
       {"--loop-limit", BuildParam::LoopLimit},        {"--page-texels", BuildParam::PageTexels},
       {"--triangle-test", BuildParam::TriangleTest},  {"--stack-size", BuildParam::KdStackSize},
       {"--kd-builder", BuildParam::KdBuilder},
-      {"--kd-termination", BuildParam::KdTermination}};
+      {"--kd-termination", BuildParam::KdTermination},
+      {"--dynamic", BuildParam::Dynamic}};
   for (const std::string& flag : o.givenFlags) s.givenParams.push_back(kFlags.at(flag));
+  if (o.frames == 0 && std::count(s.givenParams.begin(), s.givenParams.end(), BuildParam::Dynamic))
+    throw std::runtime_error("--dynamic chooses how a --frames sequence updates its structure: it needs --frames");
   s.stats = o.stats;
   return s;
 }

@@ -23,21 +23,31 @@ GpuRenderer::GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width,
     : scene_(scene),
       traversal_(traversal),
       rays_(width, height, kRaySurfaceCount),
-      triangles_(triangleShadingTexels(scene), "triangle shading data", maxPageTexels),
+      maxPageTexels_(maxPageTexels),
+      triangles_(std::make_unique<ConstInputStream>(triangleShadingTexels(scene), "triangle shading data", maxPageTexels)),
       materials_(materialTexels(scene), "materials", maxPageTexels),
       raygen_("raygen", "raygen.frag"),
       cull_("cull", "cull.frag", StreamKernel::Depth::Cull),
-      shade_("shade", "shade.frag", StreamKernel::Depth::Test, {streamPagesDefine({&triangles_, &materials_})}) {
+      shade_("shade", "shade.frag", StreamKernel::Depth::Test, {streamPagesDefine({triangles_.get(), &materials_})}) {
   cull_.bindInput("uState", rays_, kStateSurface);
   const char* samplers[] = {"uOrigin", "uDirection", "uState", "uHit", "uColor", "uThroughput", "uPending"};
   for (int s : kAllSurfaces) shade_.bindInput(samplers[s], rays_, s);
-  shade_.bindInput("uTriangles", triangles_);
+  shade_.bindInput("uTriangles", *triangles_);
   shade_.bindInput("uMaterials", materials_);
   shade_.set("uLightPosition", scene.light.position);
   shade_.set("uLightColor", scene.light.color);
   shade_.set("uBackground", scene.background);
   shade_.set("uAmbient", scene.ambient);
   shade_.set("uEpsilon", secondaryRayEpsilon(scene));
+}
+
+void GpuRenderer::trianglesMoved() {
+  // Same size, same pages: the shading kernel's STREAM_PAGES still holds.
+  triangles_ = std::make_unique<ConstInputStream>(triangleShadingTexels(scene_), "triangle shading data", maxPageTexels_);
+  shade_.bindInput("uTriangles", *triangles_);
+  shade_.set("uLightPosition", scene_.light.position);  // an animated light follows too
+  shade_.set("uLightColor", scene_.light.color);
+  shade_.set("uEpsilon", secondaryRayEpsilon(scene_));  // it follows the scene's bounds
 }
 
 uint64_t GpuRenderer::retireFinished() { return cull_.execute(true); }

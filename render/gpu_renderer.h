@@ -27,13 +27,19 @@ class GpuRenderer {
 
   InOutStream& rays() { return rays_; }
 
+  // The scene's triangles moved (--frames with --dynamic, the same count):
+  // re-uploads their shading data and the light; the kernels stay compiled.
+  void trianglesMoved();
+
  private:
   uint64_t retireFinished();
 
   const Scene& scene_;
   GpuTraversal& traversal_;
   InOutStream rays_;
-  ConstInputStream triangles_, materials_;
+  uint64_t maxPageTexels_;
+  std::unique_ptr<ConstInputStream> triangles_;  // replaced by trianglesMoved()
+  ConstInputStream materials_;
   StreamKernel raygen_, cull_, shade_;
 };
 

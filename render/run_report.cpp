@@ -68,8 +68,10 @@ nlohmann::json toJson(const RunReport& r) {
     for (const SequenceFrame& f : r.sequence)
       sequence.push_back({{"frame", f.frame}, {"time", f.time}, {"triangles", f.triangles},
                           {"moving_triangles", f.movingTriangles}, {"build_ms", f.buildMs}, {"frame_ms", f.frameMs},
-                          {"rays", f.rays}, {"mrays_per_s", f.mraysPerS}});
+                          {"total_ms", f.totalMs}, {"rays", f.rays}, {"mrays_per_s", f.mraysPerS}});
     j["sequence"] = sequence;
+    j["dynamic"] = r.dynamic;
+    j["static_build_ms"] = r.staticBuildMs;
   }
   return j;
 }
@@ -80,11 +82,13 @@ std::string summaryText(const RunReport& r, bool withStats) {
   const AccelStats& s = r.structure;
   std::string text;
   if (!r.sequence.empty()) {
-    double build = 0;
-    for (const SequenceFrame& f : r.sequence) build += f.buildMs;
-    text += format("%zu frames, time %g to %g: build %.1f ms and trace %.2f ms per frame (means)\n", r.sequence.size(),
-                   double(r.sequence.front().time), double(r.sequence.back().time), build / double(r.sequence.size()),
-                   r.frameMs);
+    double build = 0, total = 0;
+    for (const SequenceFrame& f : r.sequence) build += f.buildMs, total += f.totalMs;
+    const double n = double(r.sequence.size());
+    text += format("%zu frames, time %g to %g, --dynamic %s: build %.1f ms + trace %.2f ms = T_F %.2f ms per frame "
+                   "(means; static build %.1f ms once)\n",
+                   r.sequence.size(), double(r.sequence.front().time), double(r.sequence.back().time),
+                   r.dynamic.c_str(), build / n, r.frameMs, total / n, r.staticBuildMs);
   }
   if (withStats) {
     text += format("structure: %s, %zu nodes, %zu leaves, %zu triangle references, depth %u, %.2f floats/triangle\n",

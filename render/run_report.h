@@ -22,6 +22,7 @@ struct SequenceFrame {
   float time = 0;
   size_t triangles = 0, movingTriangles = 0;
   double buildMs = 0, frameMs = 0, rays = 0, mraysPerS = 0;
+  double totalMs = 0;  // buildMs + frameMs: the seed's T_F
 };
 
 struct FrameReport {
@@ -51,6 +52,8 @@ struct RunReport {
   std::optional<std::string> glRenderer, glBackend;  // GL runs only
   std::vector<FrameReport> frames;
   std::vector<SequenceFrame> sequence;  // --frames: one entry per frame of the sequence
+  std::string dynamic;         // --frames: the --dynamic strategy
+  double staticBuildMs = 0;    // --frames: the one-time static tree build (two-trees, merge; 0 for rebuild)
   std::vector<std::string> warnings;  // also printed on stderr unless --quiet
 };
 

@@ -10,6 +10,7 @@
 #include "render/atomic_file.h"
 #include "render/camera.h"
 #include "render/camera_path.h"
+#include "render/dynamic_renderer.h"
 #include "render/heatmap.h"
 #include "render/image_output.h"
 #include "render/memory_check.h"
@@ -173,12 +174,36 @@ fs::path sequencePath(const fs::path& path, int k) {
   return path.parent_path() / (path.stem().string() + number + path.extension().string());
 }
 
+// --dynamic: only with a structure that reads it, on the CPU or GPU stream
+// renderer (an error, not the unused-flag warning: the run would not measure
+// what was asked).
+void checkDynamic(const RunSettings& o) {
+  if (std::find(o.givenParams.begin(), o.givenParams.end(), BuildParam::Dynamic) == o.givenParams.end()) return;
+  if (o.renderer != RendererId::Cpu && o.renderer != RendererId::Gpu)
+    throw std::runtime_error("--dynamic needs the CPU or the GPU stream renderer (-r 1 or -r 2)");
+  const Structure& s = resolveStructure(o.structure, o.renderer);
+  const std::vector<BuildParam> reads = s.readsOn(o.renderer);
+  if (std::find(reads.begin(), reads.end(), BuildParam::Dynamic) == reads.end()) {
+    std::string valid;
+    for (const Structure& row : structures()) {
+      const std::vector<BuildParam> r = row.readsOn(o.renderer);
+      if (std::find(r.begin(), r.end(), BuildParam::Dynamic) != r.end())
+        valid += (valid.empty() ? "" : ", ") + std::string(row.name);
+    }
+    throw std::runtime_error("--dynamic: " + std::string(s.name) + " has no dynamic strategies on the " +
+                             std::string(rendererTitle(o.renderer)) + " renderer (valid: " + valid + ")");
+  }
+}
+
 // --frames N: the scene at N times over [start, end] (default: its animation
-// range), the structure rebuilt each frame, one image per frame; the JSON's
-// "sequence" has each frame's build and trace times.
+// range), one image (and hit buffer) per frame. The structure is rebuilt
+// each frame, or with --dynamic two-trees/merge only its dynamic part
+// (render/dynamic_renderer.h); the JSON's "sequence" has each frame's build
+// (or build and merge) and trace times and their sum T_F.
 RunReport renderSequence(const RunSettings& o, Progress& progress) {
-  if (!o.hits.empty() || !o.heatmap.empty() || o.angles != 1 || o.dumpImages)
-    throw std::runtime_error("--frames renders one image per frame: --hits, --heatmap, -n and -p do not apply");
+  if (!o.heatmap.empty() || o.angles != 1 || o.dumpImages)
+    throw std::runtime_error("--frames renders one image per frame: --heatmap, -n and -p do not apply");
+  checkDynamic(o);
   RunReport report;
   const Prepared p = prepare(o, report, progress);
   SceneOptions sceneOptions = o.sceneOptions;
@@ -192,35 +217,65 @@ RunReport renderSequence(const RunSettings& o, Progress& progress) {
                                                 " is after the end time " + std::to_string(end));
   const fs::path pattern = o.output.empty() ? fs::path("frame.png") : fs::path(o.output);
   if (o.output.empty()) checkImageFormat(pattern.string());
+  const bool keepsStatic = o.dynamic != DynamicStrategy::Rebuild;
+  const int firstScaleExponent = scene.scaleExponent;
   std::vector<fs::path> written;  // removed again if a later frame fails
   try {
     double sumMs = 0, sumRays = 0, sumSteps = 0, sumTests = 0, sumPasses = 0;
     RendererConfig config{o.width, o.height, o.bounces, o.threads, o.gpu};
+    std::unique_ptr<DynamicRenderer> dynamic;  // two-trees, merge: kept across frames
     for (int f = 0; f < o.frames; ++f) {
       const float time = o.frames == 1 ? start : start + (end - start) * float(f) / float(o.frames - 1);
       if (f > 0 || time != sceneOptions.time) {
         sceneOptions.time = time;
-        scene = loadScene(o.scene, sceneOptions);
+        scene = loadScene(o.scene, sceneOptions);  // in place: the dynamic renderer holds a reference
       }
       checkRunFitsInMemory(o.scene, o.renderer, p.structure, scene.triangles.size(), uint64_t(o.width) * uint64_t(o.height));
       if (scene.triangles.empty()) throw std::runtime_error(o.scene + ": the scene has no triangles");
+      // The static tree is built in the first frame's coordinates.
+      if (keepsStatic && scene.scaleExponent != firstScaleExponent)
+        throw std::runtime_error(o.scene + ": the scene's rescaling changes over the frames; use --dynamic rebuild");
       const CameraSpec view = cameraViews(scene, o).front();
       makeCameraBasis(view, o.width, o.height);
       progress.frame(size_t(f), size_t(o.frames));
-      const std::unique_ptr<Renderer> renderer = makeRenderer(o.renderer, p.structure, scene, config);
-      if (o.renderer == RendererId::Gpu) renderer->render(view, false);  // llvmpipe compiles on the first draw
+      std::unique_ptr<Renderer> rebuilt;
+      Renderer* renderer = nullptr;
+      double buildMs = 0;
+      if (keepsStatic) {
+        if (!dynamic) {
+          dynamic = makeDynamicRenderer(o.dynamic, o.renderer, *p.structure, scene, config);
+          report.staticBuildMs = dynamic->staticBuildMs();
+        }
+        buildMs = dynamic->nextFrame();
+        renderer = dynamic.get();
+        if (o.renderer == RendererId::Gpu && f == 0) renderer->render(view, false);  // llvmpipe compiles on the first draw
+      } else {
+        rebuilt = makeRenderer(o.renderer, p.structure, scene, config);
+        renderer = rebuilt.get();
+        buildMs = renderer->structureStats().buildMs;
+        if (o.renderer == RendererId::Gpu) renderer->render(view, false);  // llvmpipe compiles on the first draw
+      }
       FrameResult best;
+      std::vector<HitRecord> hits;
       for (int r = 0; r < o.repeats; ++r) {
-        FrameResult frame = renderer->render(view, false);
+        FrameResult frame = renderer->render(view, r == 0 && !o.hits.empty());
+        if (r == 0) hits = std::move(frame.primaryHits);
         if (r == 0 || frame.stats.frameMs < best.stats.frameMs) best = std::move(frame);
       }
       written.push_back(sequencePath(pattern, f));
       writeImage(written.back().string(), best.width, best.height, best.rgb);
+      if (!o.hits.empty()) {
+        // Hit distances in the file's units: 2^-k undoes the rescaling exactly.
+        for (HitRecord& h : hits) h.t = std::ldexp(h.t, -scene.scaleExponent);
+        written.push_back(sequencePath(o.hits, f));
+        writeHitBuffer(written.back().string(), best.width, best.height, hits);
+      }
       const AccelStats stats = renderer->structureStats();
       SequenceFrame record;
       record.frame = size_t(f), record.time = time, record.triangles = scene.triangles.size();
       record.movingTriangles = size_t(std::count(scene.moving.begin(), scene.moving.end(), uint8_t(1)));
-      record.buildMs = stats.buildMs, record.frameMs = best.stats.frameMs, record.rays = double(best.stats.rays);
+      record.buildMs = buildMs, record.frameMs = best.stats.frameMs, record.rays = double(best.stats.rays);
+      record.totalMs = record.buildMs + record.frameMs;
       record.mraysPerS = record.frameMs > 0 ? record.rays / record.frameMs / 1000.0 : 0.0;
       report.sequence.push_back(record);
       report.structure = stats;
@@ -231,6 +286,7 @@ RunReport renderSequence(const RunSettings& o, Progress& progress) {
     }
     progress.finish();
     const double n = double(o.frames);
+    report.dynamic = std::string(dynamicStrategyName(o.dynamic));
     report.scene = scene.name;
     report.triangles = scene.triangles.size();
     describeRun(o, p.structure, report);

@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include "accel/kd/kd_dynamic.h"
 #include "accel/registry.h"
 #include "render/progress.h"
 #include "render/run_report.h"
@@ -41,6 +42,7 @@ struct RunSettings {
   std::string exportPath;               // --export: write the scene (scenes/scene_export.h), render nothing
   int frames = 0;                       // --frames N: a sequence over the animation; 0 = one frame at --time
   std::optional<float> timeStart, timeEnd;  // --time-start/--time-end; default: the scene's animation range
+  DynamicStrategy dynamic = DynamicStrategy::Rebuild;  // --dynamic: how --frames updates a kd row's structure
 };
 
 // Throws std::runtime_error (or a subclass) with a one-line message on any

@@ -52,6 +52,7 @@ InOutStream::~InOutStream() {
   glDeleteFramebuffers(1, &framebuffer_);
   glDeleteTextures(static_cast<GLsizei>(surfaces_.size()), surfaces_.data());
   glDeleteTextures(1, &depth_);
+  if (savedDepth_ != 0) glDeleteTextures(1, &savedDepth_);
 }
 
 void InOutStream::enable() {
@@ -97,6 +98,21 @@ std::vector<float> InOutStream::readDepth() const {
                     depth.data());
   checkGlError("reading stream depth");
   return depth;
+}
+
+void InOutStream::saveDepth() {
+  if (savedDepth_ == 0) {
+    glCreateTextures(GL_TEXTURE_2D, 1, &savedDepth_);
+    glTextureStorage2D(savedDepth_, 1, GL_DEPTH_COMPONENT32F, width_, height_);
+  }
+  glCopyImageSubData(depth_, GL_TEXTURE_2D, 0, 0, 0, 0, savedDepth_, GL_TEXTURE_2D, 0, 0, 0, 0, width_, height_, 1);
+  checkGlError("saving stream depth");
+}
+
+void InOutStream::restoreDepth() {
+  if (savedDepth_ == 0) throw GlError("restoreDepth: no depth was saved");
+  glCopyImageSubData(savedDepth_, GL_TEXTURE_2D, 0, 0, 0, 0, depth_, GL_TEXTURE_2D, 0, 0, 0, 0, width_, height_, 1);
+  checkGlError("restoring stream depth");
 }
 
 }  // namespace passtrace

@@ -50,10 +50,19 @@ class InOutStream {
   std::vector<glm::vec4> read(int surface) const;
   std::vector<float> readDepth() const;
 
+  // Two structures traced one after the other over the same rays (--dynamic
+  // two-trees): the first one's cull retires every ray it finishes, so the
+  // depth buffer (which rays are active) is saved before it and restored
+  // before the second. A GPU-side copy into a second depth texture, made on
+  // first use.
+  void saveDepth();
+  void restoreDepth();
+
  private:
   int width_, height_;
   GLuint framebuffer_ = 0;
   GLuint depth_ = 0;
+  GLuint savedDepth_ = 0;  // saveDepth()'s copy; 0 until first used
   std::vector<GLuint> surfaces_;
   std::vector<int> writeSurfaces_;
 };

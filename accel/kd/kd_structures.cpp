@@ -115,15 +115,13 @@ KdBuildConfig kdPbrtConfigFor(const AccelBuildConfig& config) {
   return kd;
 }
 
-KdStreamBuild buildKdStream(KdStreamVariant variant, std::span<const Triangle> tris, const AccelBuildConfig& config) {
-  const auto start = std::chrono::steady_clock::now();
-  const KdTree tree = buildKdTreeFor(tris, config);
-  KdStreamBuild build{variant == KdStreamVariant::Backtrack ? flattenKdBacktrack(tree, tris.size())
-                                                            : flattenKdRestart(tree, tris.size()),
+KdStreamBuild flattenKdStream(KdStreamVariant variant, const KdTree& tree, size_t triangleCount,
+                              int shortStackSize) {
+  KdStreamBuild build{variant == KdStreamVariant::Backtrack ? flattenKdBacktrack(tree, triangleCount)
+                                                            : flattenKdRestart(tree, triangleCount),
                       tree.bounds, AccelStats{}, 0};
   AccelStats& s = build.stats;
   s.name = kdStreamName(variant);
-  s.buildMs = millisecondsSince(start);
   s.floatsPerTriangle = build.texels.floatsPerTriangle;
   setKdTreeStats(s, tree);
   s.structureBytes = (build.texels.nodes.size() + build.texels.lists.size()) * sizeof(glm::vec4);
@@ -135,10 +133,18 @@ KdStreamBuild buildKdStream(KdStreamVariant variant, std::span<const Triangle> t
     // A path holds depth - 1 internal nodes, each pushing at most one entry.
     build.stackSize = std::max<uint32_t>(1, s.depth);
   } else if (kdHasStack(variant)) {
-    if (config.kdStackSize < 1 || config.kdStackSize > 8)
+    if (shortStackSize < 1 || shortStackSize > 8)
       throw std::invalid_argument("the kd short-stack size (--stack-size) must be 1 to 8");
-    build.stackSize = uint32_t(config.kdStackSize);
+    build.stackSize = uint32_t(shortStackSize);
   }
+  return build;
+}
+
+KdStreamBuild buildKdStream(KdStreamVariant variant, std::span<const Triangle> tris, const AccelBuildConfig& config) {
+  const auto start = std::chrono::steady_clock::now();
+  const KdTree tree = buildKdTreeFor(tris, config);
+  KdStreamBuild build = flattenKdStream(variant, tree, tris.size(), config.kdStackSize);
+  build.stats.buildMs = millisecondsSince(start);
   return build;
 }
 

@@ -47,6 +47,10 @@ struct KdStreamBuild {
   uint32_t stackSize = 0;   // stack entries of the stack variants (KdStreamData::stackSize)
 };
 KdStreamBuild buildKdStream(KdStreamVariant variant, std::span<const Triangle> tris, const AccelBuildConfig& config);
+// The flattening half of buildKdStream, for a tree built elsewhere (dynamic
+// scenes: a merged tree, the two trees); stats.buildMs is left 0.
+KdStreamBuild flattenKdStream(KdStreamVariant variant, const KdTree& tree, size_t triangleCount,
+                              int shortStackSize = AccelBuildConfig{}.kdStackSize);
 
 // The registry's factories (accel/registry.cpp).
 std::unique_ptr<CpuAccelerator> makeKdTreeCpu(std::span<const Triangle> tris, const AccelBuildConfig& config);

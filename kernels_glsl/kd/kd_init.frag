@@ -12,6 +12,13 @@ uniform sampler2D uOrigin;
 uniform sampler2D uDirection;
 uniform vec3 uSceneMin;
 uniform vec3 uSceneMax;
+#ifdef KD_CONTINUE
+// A second tree after a first (--dynamic two-trees): the hit surface holds
+// the first tree's hit and the state surface its step and test counts.
+#include "ray_kinds.glsl"
+uniform sampler2D uState;
+uniform sampler2D uHit;
+#endif
 
 layout(location = 0) out vec4 outState;  // packed node, steps, tests, hasWork
 layout(location = 1) out vec4 outAux;    // mode, tMin, tMax, sceneMax
@@ -26,7 +33,16 @@ void main() {
   // An empty scene's box (min > max, infinite) would clip to everything.
   bool sceneEmpty = any(greaterThan(uSceneMin, uSceneMax));
   bool hasWork = inside && tMin <= tMax && !sceneEmpty;
-  outState = vec4(packIndex(0u), 0.0, 0.0, hasWork ? 1.0 : 0.0);
+  vec2 counts = vec2(0.0);
+#ifdef KD_CONTINUE
+  // Only a hit nearer than the first tree's can matter; a shadow ray that
+  // hit is done.
+  vec4 hit = readElement(uHit);
+  tMax = min(tMax, hit.x);
+  hasWork = hasWork && tMin <= tMax && !(origin.w == RAY_SHADOW && hit.x < direction.w);
+  counts = readElement(uState).yz;
+#endif
+  outState = vec4(packIndex(0u), counts, hasWork ? 1.0 : 0.0);
   outAux = vec4(-1.0, tMin, tMax, tMax);
 #ifdef KD_RECORD
   // Restart from the root, push-down on, empty stack.

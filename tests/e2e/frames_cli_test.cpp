@@ -59,7 +59,7 @@ TEST_F(Frames, OverAGltfNodeAnimationAndMorphTargets) {
 
 TEST_F(Frames, ErrorsLeaveNothing) {
   expectOneLineError(run("-s cornell --frames 3 -r 1 -w 8 -o " + path("f.png")), "no animation");
-  expectOneLineError(run("-s " + kGltf + "animated.gltf --frames 3 -r 1 -w 8 --hits " + path("h.exr")), "--frames");
+  expectOneLineError(run("-s " + kGltf + "animated.gltf --frames 3 -r 1 -w 8 --heatmap " + path("h.png")), "--frames");
   expectOneLineError(run("-s " + kGltf + "animated.gltf --time-start 1 -r 1 -w 8 -o " + path("f.png")), "--frames");
   expectOneLineError(run("-s " + kGltf + "animated.gltf --frames 3 --time-start 2 --time-end 1 -r 1 -w 8 -o " +
                          path("f.png")), "start time");

@@ -40,6 +40,7 @@ TEST(CliDefaults, EqualTheRegistrysBuildParameterDefaults) {
   EXPECT_EQ(number(o.stackSize), value(BuildParam::KdStackSize));
   EXPECT_EQ(o.kdBuilder, value(BuildParam::KdBuilder));
   EXPECT_EQ(o.kdTermination, value(BuildParam::KdTermination));
+  EXPECT_EQ(o.dynamic, value(BuildParam::Dynamic));
 }
 
 TEST(CliDefaults, EveryBuildParameterHasAFlagAndADefault) {

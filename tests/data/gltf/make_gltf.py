@@ -198,3 +198,109 @@ write("morph.gltf", b.gltf(
     meshes=[{"primitives": [{"attributes": {"POSITION": quad}, "targets": [{"POSITION": lift}]}], "weights": [0]}],
     animations=[{"samplers": [{"input": keys, "output": weights}],
                  "channels": [{"sampler": 0, "target": {"node": 0, "path": "weights"}}]}]))
+
+# dynamic.gltf: the built-in dynamic scene of --dynamic (tests/e2e/
+# dynamic_cli_test.cpp): static geometry (a floor of 512 triangles, four
+# pillars, a sphere) and three moving objects over t 0 -> 2, looped (the last
+# key equals the first): a sphere on a rigid path (translation, LINEAR), a
+# bar spinning about y (rotation, LINEAR) and a sphere morphing between
+# three equally spaced keyframe meshes (two morph targets, weights LINEAR:
+# base, stretched, squashed, base). 1,404 triangles, 652 of them moving.
+import math
+
+
+def grid(n, size):
+    tris = []
+    step = 2.0 * size / n
+    for i in range(n):
+        for j in range(n):
+            x0, z0 = -size + i * step, -size + j * step
+            a, b, c, d = (x0, 0, z0), (x0 + step, 0, z0), (x0 + step, 0, z0 + step), (x0, 0, z0 + step)
+            tris += [a, c, b, a, d, c]
+    return tris
+
+
+def box(lo, hi):
+    (x0, y0, z0), (x1, y1, z1) = lo, hi
+    v = [(x0, y0, z0), (x1, y0, z0), (x1, y1, z0), (x0, y1, z0), (x0, y0, z1), (x1, y0, z1), (x1, y1, z1), (x0, y1, z1)]
+    faces = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (3, 7, 6, 2), (0, 4, 7, 3), (1, 2, 6, 5)]
+    tris = []
+    for a, b, c, d in faces:
+        tris += [v[a], v[b], v[c], v[a], v[c], v[d]]
+    return tris
+
+
+def sphere(radius, slices, stacks, scale=(1, 1, 1)):
+    def point(i, j):
+        theta, phi = math.pi * j / stacks, 2 * math.pi * i / slices
+        return (radius * scale[0] * math.sin(theta) * math.cos(phi), radius * scale[1] * math.cos(theta),
+                radius * scale[2] * math.sin(theta) * math.sin(phi))
+    tris = []
+    for i in range(slices):
+        for j in range(stacks):
+            a, b, c, d = point(i, j), point(i + 1, j), point(i + 1, j + 1), point(i, j + 1)
+            tris += [a, c, b, a, d, c]
+    return tris
+
+
+def delta(target, base):
+    return [tuple(t[k] - b[k] for k in range(3)) for t, b in zip(target, base)]
+
+
+def turn(degrees):  # quaternion about y
+    h = math.radians(degrees) / 2
+    return [0, math.sin(h), 0, math.cos(h)]
+
+
+b = Builder()
+floor = b.vec3(grid(16, 4.0))
+pillars = b.vec3(box((-3.2, 0, -3.2), (-2.8, 2, -2.8)) + box((2.8, 0, -3.2), (3.2, 2, -2.8)) +
+                 box((-3.2, 0, 2.8), (-2.8, 2, 3.2)) + box((2.8, 0, 2.8), (3.2, 2, 3.2)))
+still = b.vec3(sphere(0.8, 16, 6))
+ball = b.vec3(sphere(0.6, 16, 10))
+bar = b.vec3(box((-1.5, -0.15, -0.15), (1.5, 0.15, 0.15)))
+blob_base = sphere(0.7, 16, 10)
+blob = b.vec3(blob_base)
+stretched = b.vec3(delta(sphere(0.7, 16, 10, (0.6, 1.8, 0.6)), blob_base))
+squashed = b.vec3(delta(sphere(0.7, 16, 10, (1.5, 0.5, 1.5)), blob_base))
+keys5 = b.add("f", [0, 0.5, 1, 1.5, 2], "SCALAR", FLOAT, min=[0], max=[2])
+path = b.add("f", [-2, 0.6, -1, 2, 0.6, -1, 2, 1.8, 1.5, -2, 0.6, 1.5, -2, 0.6, -1], "VEC3", FLOAT)
+spin = b.add("f", turn(0) + turn(90) + turn(180) + turn(270) + turn(360), "VEC4", FLOAT)
+keys4 = b.add("f", [0, 2 / 3, 4 / 3, 2], "SCALAR", FLOAT, min=[0], max=[2])
+morphs = b.add("f", [0, 0, 1, 0, 0, 1, 0, 0], "SCALAR", FLOAT)
+write("dynamic.gltf", b.gltf(
+    scenes=[{"nodes": [0, 1, 2, 3, 4, 5, 6, 7]}],
+    extensionsUsed=["KHR_lights_punctual"],
+    extensions={"KHR_lights_punctual": {"lights": [{"type": "point", "color": [1, 1, 1], "intensity": 30}]}},
+    cameras=[{"type": "perspective", "perspective": {"yfov": 0.9, "znear": 0.1}}],
+    nodes=[
+        {"translation": [0, 5, 9], "rotation": [-0.25038, 0, 0, 0.96815], "camera": 0},
+        {"translation": [3, 6, 4], "extensions": {"KHR_lights_punctual": {"light": 0}}},
+        {"mesh": 0},
+        {"mesh": 1},
+        {"translation": [0, 0.8, 0], "mesh": 2},
+        {"translation": [-2, 0.6, -1], "mesh": 3},
+        {"translation": [0, 2.6, 0], "mesh": 4},
+        {"translation": [2, 1.2, -2.2], "mesh": 5, "weights": [0, 0]},
+    ],
+    materials=[
+        {"pbrMetallicRoughness": {"baseColorFactor": [0.7, 0.7, 0.65, 1], "metallicFactor": 0.0}},
+        {"pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.3, 0.2, 1], "metallicFactor": 0.0}},
+        {"pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.9, 0.9, 1], "metallicFactor": 1.0, "roughnessFactor": 0.0}},
+        {"pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.5, 0.8, 1], "metallicFactor": 0.0}},
+    ],
+    meshes=[{"primitives": [{"attributes": {"POSITION": floor}, "material": 0}]},
+            {"primitives": [{"attributes": {"POSITION": pillars}, "material": 0}]},
+            {"primitives": [{"attributes": {"POSITION": still}, "material": 2}]},
+            {"primitives": [{"attributes": {"POSITION": ball}, "material": 1}]},
+            {"primitives": [{"attributes": {"POSITION": bar}, "material": 3}]},
+            {"primitives": [{"attributes": {"POSITION": blob},
+                             "targets": [{"POSITION": stretched}, {"POSITION": squashed}], "material": 1}],
+             "weights": [0, 0]}],
+    animations=[{
+        "samplers": [{"input": keys5, "output": path, "interpolation": "LINEAR"},
+                     {"input": keys5, "output": spin, "interpolation": "LINEAR"},
+                     {"input": keys4, "output": morphs, "interpolation": "LINEAR"}],
+        "channels": [{"sampler": 0, "target": {"node": 5, "path": "translation"}},
+                     {"sampler": 1, "target": {"node": 6, "path": "rotation"}},
+                     {"sampler": 2, "target": {"node": 7, "path": "weights"}}]}]))
