@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "accel/bvh/bvh_structures.h"
+#include "accel/dacrt/dacrt_structure.h"
 #include "accel/grid/grid_structures.h"
 #include "accel/kd/kd_structures.h"
 #include "accel/octree/octree_structure.h"
@@ -78,6 +79,12 @@ std::vector<Structure> makeRows() {
        .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeGridStreamMirror,
        .memory = {1243, 0}, .reads = {P::GridMultiplier}},
+      {.name = "dacrt", .family = "dacrt",
+       .description = "divide-and-conquer ray tracing (Mora 2011): no stored structure, rays and triangles "
+                      "filtered together each frame",
+       .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
+       .cpu = makeDacrtCpu,
+       .memory = {0, 0}, .reads = {P::DacrtRLimit, P::DacrtPLimit, P::DacrtCones, P::DacrtSplit}},
   };
 #if PASSTRACE_HAVE_EMBREE
   rows.push_back({.name = "embree", .family = "embree",
@@ -124,6 +131,10 @@ std::string_view buildParamFlag(BuildParam param) {
     case P::LoopLimit: return "-l/--loop-limit";
     case P::PageTexels: return "--page-texels";
     case P::TriangleTest: return "--triangle-test";
+    case P::DacrtRLimit: return "--dacrt-rlimit";
+    case P::DacrtPLimit: return "--dacrt-plimit";
+    case P::DacrtCones: return "--dacrt-cones";
+    case P::DacrtSplit: return "--dacrt-split";
   }
   return "?";
 }
@@ -147,6 +158,10 @@ std::string buildParamDefault(BuildParam param) {
     case P::LoopLimit: return number(gpu.loopLimit);
     case P::PageTexels: return gpu.maxPageTexels == 0 ? "0 = the largest texture" : number(double(gpu.maxPageTexels));
     case P::TriangleTest: return kTriangleTestNames[int(cpu.triangleTest)];
+    case P::DacrtRLimit: return number(cpu.dacrtRLimit);
+    case P::DacrtPLimit: return number(cpu.dacrtPLimit);
+    case P::DacrtCones: return cpu.dacrtCones ? "on" : "off";
+    case P::DacrtSplit: return cpu.dacrtMedianSplit ? "median" : "mean";
   }
   return "?";
 }

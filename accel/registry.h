@@ -55,6 +55,10 @@ enum class BuildParam {
   LoopLimit,       // -l: GPU traversal steps per pass (every stream structure)
   PageTexels,      // --page-texels: GPU data texture size (every stream structure)
   TriangleTest,    // --triangle-test: every structure but Embree
+  DacrtRLimit,     // --dacrt-rlimit: DACRT's ray count for naive tracing (dacrtRLimit)
+  DacrtPLimit,     // --dacrt-plimit: DACRT's triangle count for naive tracing (dacrtPLimit)
+  DacrtCones,      // --dacrt-cones: DACRT's conic packets (dacrtCones)
+  DacrtSplit,      // --dacrt-split: DACRT's split position, mean or median (dacrtMedianSplit)
 };
 // The flag a parameter is given with, as --help shows it ("-g/--grid-multiplier").
 std::string_view buildParamFlag(BuildParam param);
@@ -64,7 +68,8 @@ std::string buildParamDefault(BuildParam param);
 inline constexpr BuildParam kBuildParams[] = {
     BuildParam::SwapChildren,  BuildParam::GsTries,   BuildParam::GridMultiplier,
     BuildParam::KdMinElements, BuildParam::KdMaxDepth, BuildParam::GridKernels,
-    BuildParam::LoopLimit,     BuildParam::PageTexels, BuildParam::TriangleTest};
+    BuildParam::LoopLimit,     BuildParam::PageTexels, BuildParam::TriangleTest,
+    BuildParam::DacrtRLimit,   BuildParam::DacrtPLimit, BuildParam::DacrtCones,    BuildParam::DacrtSplit};
 
 // Peak resident bytes per triangle of a run, measured (apps' memory check):
 // the slope between 1 M and 2 M triangles of the procedural "spheres" scene,

@@ -25,6 +25,8 @@ RunSettings toRunSettings(const Options& o) {
   build.kdMinElements = o.kdMinElements;
   build.kdMaxDepth = o.kdMaxDepth;
   build.triangleTest = *triangleTestByName(o.triangleTest);  // the parser accepts only valid names
+  build.dacrtRLimit = o.dacrtRLimit, build.dacrtPLimit = o.dacrtPLimit, build.dacrtCones = o.dacrtCones;
+  build.dacrtMedianSplit = o.dacrtSplit == "median";
   s.gpu.loopLimit = o.loopLimit;
   s.gpu.gridKernels = o.gridKernels == "split" ? GridKernels::Split : GridKernels::Merged;
   s.gpu.maxPageTexels = o.pageTexels;
@@ -43,7 +45,9 @@ RunSettings toRunSettings(const Options& o) {
       {"--grid-multiplier", BuildParam::GridMultiplier}, {"--kd-min-elements", BuildParam::KdMinElements},
       {"--kd-max-depth", BuildParam::KdMaxDepth},     {"--grid-kernels", BuildParam::GridKernels},
       {"--loop-limit", BuildParam::LoopLimit},        {"--page-texels", BuildParam::PageTexels},
-      {"--triangle-test", BuildParam::TriangleTest}};
+      {"--triangle-test", BuildParam::TriangleTest},
+      {"--dacrt-rlimit", BuildParam::DacrtRLimit},    {"--dacrt-plimit", BuildParam::DacrtPLimit},
+      {"--dacrt-cones", BuildParam::DacrtCones},      {"--dacrt-split", BuildParam::DacrtSplit}};
   for (const std::string& flag : o.givenFlags) s.givenParams.push_back(kFlags.at(flag));
   s.stats = o.stats;
   return s;

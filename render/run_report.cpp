@@ -67,6 +67,11 @@ nlohmann::json toJson(const RunReport& r) {
                           {"rays", f.rays}, {"mrays_per_s", f.mraysPerS}});
     j["sequence"] = sequence;
   }
+  // Only for DACRT: its work per frame, as the seed's Fig. 8 counts it.
+  if (r.dacrt)
+    j["dacrt"] = {{"ray_box_tests", r.dacrt->rayBox},           {"cone_box_tests", r.dacrt->coneBox},
+                  {"triangle_box_tests", r.dacrt->triangleBox}, {"ray_triangle_tests", r.dacrt->rayTriangle},
+                  {"nodes", r.dacrt->nodes}};
   return j;
 }
 
@@ -86,6 +91,12 @@ std::string summaryText(const RunReport& r, bool withStats) {
     text += format("structure: %s, %zu nodes, %zu leaves, %zu triangle references, depth %u, %.2f floats/triangle\n",
                    s.name.c_str(), s.nodes, s.leaves, s.references, s.depth, s.floatsPerTriangle);
     text += format("per ray: %.2f traversal steps, %.2f triangle tests\n", r.stepsPerRay, r.triangleTestsPerRay);
+    if (r.dacrt)
+      text += format("dacrt per frame: %llu ray/box, %llu cone/box, %llu triangle/box, %llu ray/triangle tests, "
+                     "%llu nodes\n",
+                     (unsigned long long)r.dacrt->rayBox, (unsigned long long)r.dacrt->coneBox,
+                     (unsigned long long)r.dacrt->triangleBox, (unsigned long long)r.dacrt->rayTriangle,
+                     (unsigned long long)r.dacrt->nodes);
   }
   text += format("%s: %zu triangles; %s renderer, %s (build %.1f ms, %.2f floats/triangle)%s%s\n", r.scene.c_str(),
                  r.triangles, r.renderer.c_str(), s.name.c_str(), s.buildMs, s.floatsPerTriangle,

@@ -50,6 +50,9 @@ struct RunReport {
   std::vector<FrameReport> frames;
   std::vector<SequenceFrame> sequence;  // --frames: one entry per frame of the sequence
   std::vector<std::string> warnings;  // also printed on stderr unless --quiet
+  // DACRT's filter counters per frame (means over the angles or frames):
+  // the JSON's "dacrt" object, only in runs of a batch tracer.
+  std::optional<FilterStats> dacrt;
 };
 
 nlohmann::json toJson(const RunReport& report);

@@ -37,6 +37,10 @@ TEST(CliDefaults, EqualTheRegistrysBuildParameterDefaults) {
   EXPECT_EQ(number(o.loopLimit), value(BuildParam::LoopLimit));
   EXPECT_EQ(number(double(o.pageTexels)), value(BuildParam::PageTexels));
   EXPECT_EQ(o.triangleTest, value(BuildParam::TriangleTest));
+  EXPECT_EQ(number(o.dacrtRLimit), value(BuildParam::DacrtRLimit));
+  EXPECT_EQ(number(o.dacrtPLimit), value(BuildParam::DacrtPLimit));
+  EXPECT_EQ(o.dacrtCones ? "on" : "off", value(BuildParam::DacrtCones));
+  EXPECT_EQ(o.dacrtSplit, value(BuildParam::DacrtSplit));
 }
 
 TEST(CliDefaults, EveryBuildParameterHasAFlagAndADefault) {
