@@ -62,6 +62,7 @@ public:
       s_.hits[e] = Hit{rays_[e].tMax, 0.0f, 0.0f, kNoHit};
       s_.invDir[e] = safeInverse(rays_[e].direction);
     }
+    if (s_.tris.empty()) return counters_;  // every ray misses: nothing to filter
     if (s_.settings.cones && b.width > 0) makeCones(begin, end, plain);
     else
       for (size_t e = begin; e < end; ++e)
