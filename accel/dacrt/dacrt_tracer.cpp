@@ -22,7 +22,12 @@ constexpr size_t kMeanSplitMin = 10000;    // the seed's sampled-mean split abov
 constexpr size_t kSampleStride = 50;       // ... over every 50th triangle
 constexpr size_t kEdgeTestMax = 100;       // the full triangle/box test at this many triangles or fewer
 constexpr int kPacketSide = 8;             // a cone per 8x8 rays: one 64-bit mask
-constexpr size_t kConeLimit = 4;           // the seed's cLimit (it gives none): cones flush to rays at 4 or fewer
+// The seed's cLimit (it gives none): cones flush to rays at this many or
+// fewer. Measured on the bunny at 512² (docs/bench-dacrt): 4 gives the
+// fewest box tests for primary cones; shadow cones, wider and less
+// coherent, do best flushed early, at 16.
+constexpr size_t kPrimaryConeLimit = 4;
+constexpr size_t kShadowConeLimit = 16;
 constexpr double kConeMargin = 1e-3;       // radians added to a cone's angle: rounding never leaves a ray out
 constexpr double kWidestCone = 1.3;        // radians (75°): wider packets go ray by ray
 constexpr unsigned kBandsPerThread = 2;    // screen bands per thread: stealing evens out uneven bands
@@ -116,7 +121,8 @@ private:
     // Cones do not thin out as rays do: where triangles meet at a point both
     // halves keep them all and the cones with them, so packets stop at a
     // kd-tree's depth limit (8 + 1.3 log2 N) and their rays carry on.
-    if (coneEnd - conesRetired_ <= kConeLimit || triEnd <= size_t(s_.settings.pLimit) || depth >= packetDepth_)
+    const size_t coneLimit = s_.frontToBack ? kPrimaryConeLimit : kShadowConeLimit;
+    if (coneEnd - conesRetired_ <= coneLimit || triEnd <= size_t(s_.settings.pLimit) || depth >= packetDepth_)
       return flush(cell, coneEnd, triEnd, depth);
     const Split split = chooseSplit(cell, triEnd);
     if (!(split.position > cell.min[split.axis] && split.position < cell.max[split.axis]))
