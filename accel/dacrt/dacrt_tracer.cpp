@@ -387,6 +387,10 @@ FilterStats trace(std::span<const Triangle> tris, const Settings& settings, cons
   const size_t rows = width ? (n + width - 1) / width : 0;
   const size_t bands = std::max<size_t>(1, std::min<size_t>(size_t(threads) * kBandsPerThread, (rows + 7) / 8));
   const size_t rowsPerBand = ((rows + bands - 1) / bands + 7) / 8 * 8;
+  if (rows <= rowsPerBand) {  // one band (a single ray from intersect): no arena to set up
+    Band worker(shared);
+    return worker.run(0, n);
+  }
   tbb::combinable<FilterStats> counters;
   tbb::task_arena arena{int(threads)};
   arena.execute([&] {
