@@ -75,7 +75,7 @@ SEED_FIG8 = {  # scene: (ray/box basic, ray/box cones, cone/box cones, triangle/
 class Plan:
     """The runs of the five experiments: [(kind, meta, args, key)]."""
 
-    def __init__(self, size, repeats, registry, scenes, bart_ok, frames=None, anim_size=None):
+    def __init__(self, size, repeats, registry, scenes, bart_ok, frames=None, anim_size=None, image_dir=None):
         self.size, self.repeats = size, repeats
         self.anim_size = anim_size or max(32, size // 2)
         known = {r["name"]: r["renderers"] for r in registry["accelerators"]}
@@ -124,7 +124,10 @@ class Plan:
                     continue
                 add("animation", {"scene": label, "run": name},
                     scene_args + ["-r", rid, "-a", structure, "-w", str(self.anim_size), "-b", "2",
-                                  "--frames", str(frames or n)] + extra, f"anim__{label}__{name}")
+                                  "--frames", str(frames or n)] + extra +
+                    # --frames writes an image per frame: into runs/, not the working directory
+                    (["-o", str(image_dir / f"anim__{label}__{name}.png")] if image_dir else []),
+                    f"anim__{label}__{name}")
 
 
 # ---------------------------------------------------------------- the report
@@ -353,9 +356,9 @@ def main(args, binary, registry, out, bart, bart_ok, bench, command):
     unknown = [s for s in scenes if s not in dict(SCENES)]
     if unknown:
         raise SystemExit(f"bench --dacrt: unknown scene {unknown[0]!r} (expected {', '.join(dict(SCENES))})")
-    plan = Plan(args.size or 256, args.repeats or 3, registry, scenes, bart_ok,
-                frames=args.frames, anim_size=args.dynamic_size)
     runner = bench.Runner(binary, bart, out, args.timeout or 1800, args.force)
+    plan = Plan(args.size or 256, args.repeats or 3, registry, scenes, bart_ok,
+                frames=args.frames, anim_size=args.dynamic_size, image_dir=runner.runs_dir)
     started = time.monotonic()
     records = []
     try:
