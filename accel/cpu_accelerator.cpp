@@ -25,6 +25,13 @@ private:
 
 }  // namespace
 
+std::optional<FilterStats> CpuAccelerator::traceBatch(const RayBatch& batch, std::span<Hit> hits,
+                                                      std::span<RayStats> stats) const {
+  for (size_t i = 0; i < batch.rays.size(); ++i)
+    if (batch.active[i]) hits[i] = intersect(batch.rays[i], batch.anyHit[i] != 0, &stats[i]);
+  return std::nullopt;
+}
+
 std::unique_ptr<CpuAccelerator> makeBruteForceAccelerator(std::span<const Triangle> tris, TriangleTest test) {
   return std::make_unique<BruteForce>(tris, test);
 }

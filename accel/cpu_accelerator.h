@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 
@@ -47,6 +48,24 @@ struct AccelBuildConfig {
   // --triangle-test: used by every traversal, CPU and GPU (not a build
   // parameter, but every structure is made from this config).
   TriangleTest triangleTest = TriangleTest::MollerTrumbore;
+  // DACRT (accel/dacrt/): no structure is built; these steer its recursion.
+  int dacrtRLimit = 20;     // --dacrt-rlimit: trace naively at this many rays or fewer
+  int dacrtPLimit = 16;     // --dacrt-plimit: ... or at this many triangles or fewer
+  bool dacrtCones = false;  // --dacrt-cones: conic packets of 8x8 primary rays (and shadow rays)
+  bool dacrtMedianSplit = false;  // --dacrt-split median: always the spatial median (the seed's baseline)
+};
+
+// One generation of rays handed to a batch tracer at once (the CPU renderer
+// makes one per bounce: primary rays, then shadow and mirror rays). Element i
+// is pixel i of a width x height image when width > 0.
+struct RayBatch {
+  std::span<const Ray> rays;
+  std::span<const uint8_t> active;  // 0: no ray at this element (skip it)
+  std::span<const uint8_t> anyHit;  // 1: a shadow ray, any hit before tMax will do
+  int width = 0, height = 0;        // the image the elements lie in (8x8 packets); 0 = no layout
+  bool primary = false;             // every ray starts at the same point (the camera)
+  std::optional<glm::vec3> light;   // shadow rays end at this point (a point light)
+  unsigned threads = 0;             // 0: all cores
 };
 
 class CpuAccelerator {
@@ -55,6 +74,14 @@ public:
   // Closest hit before ray.tMax, or with anyHit any hit before it. stats, when
   // given, is added to. Safe to call from many threads at once.
   virtual Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const = 0;
+  // Batch tracing, for tracers that need all rays of a generation together
+  // (DACRT). Only those that say tracesBatches() get called this way; every
+  // other structure keeps the renderer's per-ray loop. hits and stats have
+  // one entry per element; stats are added to. The default loops over
+  // intersect. Returns the tracer's filter counters, if it has any.
+  virtual bool tracesBatches() const { return false; }
+  virtual std::optional<FilterStats> traceBatch(const RayBatch& batch, std::span<Hit> hits,
+                                                std::span<RayStats> stats) const;
   virtual std::string name() const = 0;
   virtual AccelStats stats() const = 0;
 };

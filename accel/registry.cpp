@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "accel/bvh/bvh_structures.h"
+#include "accel/dacrt/dacrt_structure.h"
 #include "accel/grid/grid_structures.h"
 #include "accel/kd/kd_structures.h"
 #include "accel/octree/octree_structure.h"
@@ -20,7 +21,9 @@ using P = BuildParam;
 
 // One row per structure. Memory: peak bytes per triangle measured as
 // registry.h's MemoryModel says (CPU column for kd-restart, kd-backtrack and
-// grid-stream: their kernels' CPU mirrors).
+// grid-stream: their kernels' CPU mirrors). dacrt's grows with the threads:
+// each running band holds 4 bytes of triangle index per triangle (measured
+// with 2).
 std::vector<Structure> makeRows() {
   std::vector<Structure> rows = {
       {.name = "kk-bvh", .family = "bvh",
@@ -114,6 +117,12 @@ std::vector<Structure> makeRows() {
        .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeGridStreamMirror,
        .memory = {1243, 0}, .reads = {P::GridMultiplier}},
+      {.name = "dacrt", .family = "dacrt",
+       .description = "divide-and-conquer ray tracing (Mora 2011): no stored structure, rays and triangles "
+                      "filtered together each frame",
+       .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
+       .cpu = makeDacrtCpu,
+       .memory = {48, 0}, .reads = {P::DacrtRLimit, P::DacrtPLimit, P::DacrtCones, P::DacrtSplit}},
   };
 #if PASSTRACE_HAVE_EMBREE
   rows.push_back({.name = "embree", .family = "embree",
@@ -164,6 +173,10 @@ std::string_view buildParamFlag(BuildParam param) {
     case P::KdBuilder: return "--kd-builder";
     case P::KdTermination: return "--kd-termination";
     case P::Dynamic: return "--dynamic";
+    case P::DacrtRLimit: return "--dacrt-rlimit";
+    case P::DacrtPLimit: return "--dacrt-plimit";
+    case P::DacrtCones: return "--dacrt-cones";
+    case P::DacrtSplit: return "--dacrt-split";
   }
   return "?";
 }
@@ -191,6 +204,10 @@ std::string buildParamDefault(BuildParam param) {
     case P::KdBuilder: return std::string(kKdBuilderNames[int(cpu.kdBuilder)]);
     case P::KdTermination: return std::string(kKdTerminationNames[int(cpu.kdTermination)]);
     case P::Dynamic: return "rebuild";
+    case P::DacrtRLimit: return number(cpu.dacrtRLimit);
+    case P::DacrtPLimit: return number(cpu.dacrtPLimit);
+    case P::DacrtCones: return cpu.dacrtCones ? "on" : "off";
+    case P::DacrtSplit: return cpu.dacrtMedianSplit ? "median" : "mean";
   }
   return "?";
 }

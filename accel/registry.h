@@ -59,6 +59,10 @@ enum class BuildParam {
   KdBuilder,       // --kd-builder: exact or binned SAH (kdBuilder)
   KdTermination,   // --kd-termination: thesis (-e/-d) or papay (kdTermination)
   Dynamic,         // --dynamic: a --frames sequence's strategy (kd rows, accel/kd/kd_dynamic.h)
+  DacrtRLimit,     // --dacrt-rlimit: DACRT's ray count for naive tracing (dacrtRLimit)
+  DacrtPLimit,     // --dacrt-plimit: DACRT's triangle count for naive tracing (dacrtPLimit)
+  DacrtCones,      // --dacrt-cones: DACRT's conic packets (dacrtCones)
+  DacrtSplit,      // --dacrt-split: DACRT's split position, mean or median (dacrtMedianSplit)
 };
 // The flag a parameter is given with, as --help shows it ("-g/--grid-multiplier").
 std::string_view buildParamFlag(BuildParam param);
@@ -70,7 +74,8 @@ inline constexpr BuildParam kBuildParams[] = {
     BuildParam::KdMinElements, BuildParam::KdMaxDepth, BuildParam::GridKernels,
     BuildParam::LoopLimit,     BuildParam::PageTexels, BuildParam::TriangleTest,
     BuildParam::KdStackSize,   BuildParam::KdBuilder,  BuildParam::KdTermination,
-    BuildParam::Dynamic};
+    BuildParam::Dynamic,       BuildParam::DacrtRLimit, BuildParam::DacrtPLimit, BuildParam::DacrtCones,
+    BuildParam::DacrtSplit};
 
 // Peak resident bytes per triangle of a run, measured (apps' memory check):
 // the slope between 1 M and 2 M triangles of the procedural "spheres" scene,

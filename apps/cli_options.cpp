@@ -113,6 +113,17 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
                  "GPU: texels per data texture (rounded down to a power of two); larger data spreads over "
                  "several textures. 0: the largest texture the GL accepts")
       ->check(CLI::Range(uint64_t(0), uint64_t(1) << 31))->capture_default_str();
+  app.add_option("--dacrt-rlimit", o.dacrtRLimit, "dacrt: trace naively when this many rays or fewer remain in a cell")
+      ->check(CLI::Range(1, 1 << 30))->capture_default_str();
+  app.add_option("--dacrt-plimit", o.dacrtPLimit,
+                 "dacrt: trace naively when this many triangles or fewer remain in a cell")
+      ->check(CLI::Range(1, 1 << 30))->capture_default_str();
+  app.add_flag("--dacrt-cones", o.dacrtCones,
+               "dacrt: conic packets, a cone per 8x8 primary rays (and per 8x8 pixels' shadow rays, from the light)");
+  app.add_option("--dacrt-split", o.dacrtSplit,
+                 "dacrt: split position, mean (of sampled triangle midpoints above 10,000 triangles, the seed's) "
+                 "or median (always the middle of the cell)")
+      ->check(CLI::IsMember({"mean", "median"}))->capture_default_str();
   app.add_option("--heatmap", o.heatmap, "write per-pixel traversal steps (all bounces) as a heat map image");
   app.add_flag("--stats", o.stats, "print the structure's memory and the per-ray step statistics");
   app.add_flag("-q,--quiet", o.quiet, "print nothing but errors");
@@ -166,7 +177,8 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
   o.accelGiven = app.count("--accel") > 0;
   for (const char* flag : {"--swap-children", "--gs-tries", "--grid-multiplier", "--kd-min-elements", "--kd-max-depth",
                            "--grid-kernels", "--loop-limit", "--page-texels", "--triangle-test", "--stack-size",
-                           "--kd-builder", "--kd-termination", "--dynamic"})
+                           "--kd-builder", "--kd-termination", "--dynamic",
+                           "--dacrt-rlimit", "--dacrt-plimit", "--dacrt-cones", "--dacrt-split"})
     if (app.count(flag)) o.givenFlags.emplace_back(flag);
   return 0;
 }

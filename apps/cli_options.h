@@ -52,6 +52,10 @@ struct Options {
   std::string kdBuilder = "exact";      // --kd-builder: exact or binned SAH
   std::string kdTermination = "thesis";  // --kd-termination: thesis (-e/-d) or papay (seed 003)
   uint64_t pageTexels = 0;          // --page-texels: GPU data texture size, 0 = the GL's largest
+  int dacrtRLimit = 20;             // --dacrt-rlimit: DACRT traces naively at this many rays or fewer
+  int dacrtPLimit = 16;             // --dacrt-plimit: ... or this many triangles or fewer
+  bool dacrtCones = false;          // --dacrt-cones: DACRT's conic packets
+  std::string dacrtSplit = "mean";  // --dacrt-split: mean (the seed's) or median
   std::string heatmap;              // --heatmap: per-pixel traversal steps as an image
   std::string exportPath;           // --export: write the scene's triangles (.obj/.gltf/.glb) and exit
   int frames = 0;                   // --frames N: render a sequence over the animation (0: one frame at --time)

@@ -29,6 +29,8 @@ RunSettings toRunSettings(const Options& o) {
   build.triangleTest = *triangleTestByName(o.triangleTest);  // the parser accepts only valid names
   build.kdBuilder = *kdBuilderByName(o.kdBuilder);
   build.kdTermination = *kdTerminationByName(o.kdTermination);
+  build.dacrtRLimit = o.dacrtRLimit, build.dacrtPLimit = o.dacrtPLimit, build.dacrtCones = o.dacrtCones;
+  build.dacrtMedianSplit = o.dacrtSplit == "median";
   s.gpu.loopLimit = o.loopLimit;
   s.gpu.gridKernels = o.gridKernels == "split" ? GridKernels::Split : GridKernels::Merged;
   s.gpu.maxPageTexels = o.pageTexels;
@@ -51,7 +53,9 @@ RunSettings toRunSettings(const Options& o) {
       {"--triangle-test", BuildParam::TriangleTest},  {"--stack-size", BuildParam::KdStackSize},
       {"--kd-builder", BuildParam::KdBuilder},
       {"--kd-termination", BuildParam::KdTermination},
-      {"--dynamic", BuildParam::Dynamic}};
+      {"--dynamic", BuildParam::Dynamic},
+      {"--dacrt-rlimit", BuildParam::DacrtRLimit},    {"--dacrt-plimit", BuildParam::DacrtPLimit},
+      {"--dacrt-cones", BuildParam::DacrtCones},      {"--dacrt-split", BuildParam::DacrtSplit}};
   for (const std::string& flag : o.givenFlags) s.givenParams.push_back(kFlags.at(flag));
   if (o.frames == 0 && std::count(s.givenParams.begin(), s.givenParams.end(), BuildParam::Dynamic))
     throw std::runtime_error("--dynamic chooses how a --frames sequence updates its structure: it needs --frames");

@@ -13,6 +13,32 @@ namespace passtrace {
 CpuRenderer::CpuRenderer(const Scene& scene, const CpuAccelerator& accelerator, unsigned threads)
     : scene_(scene), accelerator_(accelerator), threads_(threads ? threads : std::thread::hardware_concurrency()) {}
 
+// A batch tracer (DACRT) gets the whole generation at once: the rays of all
+// paths still going, each with its own tMax, shadow rays marked any-hit.
+uint64_t CpuRenderer::traceGeneration(std::vector<PathState>& paths, std::vector<Hit>& hits, bool primary, int width,
+                                      int height, FrameStats& frame) const {
+  const size_t elements = paths.size();
+  std::vector<Ray> rays(elements);
+  std::vector<uint8_t> active(elements), anyHit(elements);
+  std::vector<RayStats> stats(elements);
+  uint64_t count = 0;
+  for (size_t i = 0; i < elements; ++i) {
+    rays[i] = paths[i].ray;
+    active[i] = paths[i].kind != RayKind::None;
+    anyHit[i] = paths[i].kind == RayKind::Shadow;
+    count += active[i];
+  }
+  if (count == 0) return 0;
+  RayBatch batch{rays, active, anyHit, width, height, primary, scene_.light.position, threads_};
+  if (const std::optional<FilterStats> filter = accelerator_.traceBatch(batch, hits, stats))
+    frame.filter = frame.filter.value_or(FilterStats{}) += *filter;
+  for (size_t i = 0; i < elements; ++i) {
+    paths[i].steps += stats[i].steps;
+    paths[i].triangleTests += stats[i].triangleTests;
+  }
+  return count;
+}
+
 FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height, int bounces, bool captureHits) {
   const CameraBasis basis = makeCameraBasis(camera, width, height);
   const size_t elements = size_t(width) * size_t(height);
@@ -34,6 +60,9 @@ FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height,
 
   for (int bounce = 1; bounce <= bounces; ++bounce) {
     std::atomic<uint64_t> active{0};
+    if (accelerator_.tracesBatches()) {
+      active = traceGeneration(paths, hits, bounce == 1, width, height, result.stats);
+    } else
     parallelFor(elements, kGrain, threads_, [&](size_t begin, size_t end) {
       uint64_t count = 0;
       for (size_t i = begin; i < end; ++i) {

@@ -2,9 +2,11 @@
 // What one rendered frame hands back, whichever renderer made it.
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "accel/geometry/geometry.h"
+#include "accel/traversal_stats.h"
 #include "render/image_output.h"
 
 namespace passtrace {
@@ -20,6 +22,7 @@ struct FrameStats {
   uint64_t maxStepsPerRay = 0;
   uint64_t maxTriangleTestsPerRay = 0;
   double frameMs = 0;          // ray generation through the last shading pass
+  std::optional<FilterStats> filter;  // batch tracers' (DACRT's) counters, all bounces
 };
 
 struct FrameResult {

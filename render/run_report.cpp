@@ -73,6 +73,11 @@ nlohmann::json toJson(const RunReport& r) {
     j["dynamic"] = r.dynamic;
     j["static_build_ms"] = r.staticBuildMs;
   }
+  // Only for DACRT: its work per frame, as the seed's Fig. 8 counts it.
+  if (r.dacrt)
+    j["dacrt"] = {{"ray_box_tests", r.dacrt->rayBox},           {"cone_box_tests", r.dacrt->coneBox},
+                  {"triangle_box_tests", r.dacrt->triangleBox}, {"ray_triangle_tests", r.dacrt->rayTriangle},
+                  {"nodes", r.dacrt->nodes}};
   return j;
 }
 
@@ -102,6 +107,12 @@ std::string summaryText(const RunReport& r, bool withStats) {
     text += format("max per pixel (all its rays): %llu traversal steps, %llu triangle tests\n",
                    static_cast<unsigned long long>(r.maxStepsPerRay),
                    static_cast<unsigned long long>(r.maxTriangleTestsPerRay));
+    if (r.dacrt)
+      text += format("dacrt per frame: %llu ray/box, %llu cone/box, %llu triangle/box, %llu ray/triangle tests, "
+                     "%llu nodes\n",
+                     (unsigned long long)r.dacrt->rayBox, (unsigned long long)r.dacrt->coneBox,
+                     (unsigned long long)r.dacrt->triangleBox, (unsigned long long)r.dacrt->rayTriangle,
+                     (unsigned long long)r.dacrt->nodes);
   }
   text += format("%s: %zu triangles; %s renderer, %s (build %.1f ms, %.2f floats/triangle)%s%s\n", r.scene.c_str(),
                  r.triangles, r.renderer.c_str(), s.name.c_str(), s.buildMs, s.floatsPerTriangle,

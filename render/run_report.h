@@ -55,6 +55,9 @@ struct RunReport {
   std::string dynamic;         // --frames: the --dynamic strategy
   double staticBuildMs = 0;    // --frames: the one-time static tree build (two-trees, merge; 0 for rebuild)
   std::vector<std::string> warnings;  // also printed on stderr unless --quiet
+  // DACRT's filter counters per frame (means over the angles or frames):
+  // the JSON's "dacrt" object, only in runs of a batch tracer.
+  std::optional<FilterStats> dacrt;
 };
 
 nlohmann::json toJson(const RunReport& report);

@@ -24,6 +24,14 @@ namespace fs = std::filesystem;
 namespace passtrace {
 namespace {
 
+// Batch tracers' counters summed over n frames, per frame.
+std::optional<FilterStats> meanFilter(const std::optional<FilterStats>& sum, uint64_t n) {
+  if (!sum || n == 0) return sum;
+  FilterStats mean = *sum;
+  for (uint64_t* c : {&mean.rayBox, &mean.coneBox, &mean.triangleBox, &mean.rayTriangle, &mean.nodes}) *c /= n;
+  return mean;
+}
+
 std::vector<CameraSpec> cameraViews(const Scene& scene, const RunSettings& o) {
   CameraSpec base = scene.camera;
   if (o.fov) base.fovDegrees = *o.fov;
@@ -222,6 +230,7 @@ RunReport renderSequence(const RunSettings& o, Progress& progress) {
   std::vector<fs::path> written;  // removed again if a later frame fails
   try {
     double sumMs = 0, sumRays = 0, sumSteps = 0, sumTests = 0, sumPasses = 0;
+    std::optional<FilterStats> sumFilter;
     RendererConfig config{o.width, o.height, o.bounces, o.threads, o.gpu};
     std::unique_ptr<DynamicRenderer> dynamic;  // two-trees, merge: kept across frames
     for (int f = 0; f < o.frames; ++f) {
@@ -283,6 +292,7 @@ RunReport renderSequence(const RunSettings& o, Progress& progress) {
       sumSteps += double(best.stats.steps), sumTests += double(best.stats.triangleTests);
       report.maxStepsPerRay = std::max(report.maxStepsPerRay, best.stats.maxStepsPerRay);
       report.maxTriangleTestsPerRay = std::max(report.maxTriangleTestsPerRay, best.stats.maxTriangleTestsPerRay);
+      if (best.stats.filter) sumFilter = sumFilter.value_or(FilterStats{}) += *best.stats.filter;
     }
     progress.finish();
     const double n = double(o.frames);
@@ -296,6 +306,7 @@ RunReport renderSequence(const RunSettings& o, Progress& progress) {
     report.steps = sumSteps / n, report.triangleTests = sumTests / n;
     report.stepsPerRay = sumRays > 0 ? sumSteps / sumRays : 0.0;
     report.triangleTestsPerRay = sumRays > 0 ? sumTests / sumRays : 0.0;
+    report.dacrt = meanFilter(sumFilter, uint64_t(o.frames));
     if (!o.json.empty()) writeTextFile(o.json, toJson(report).dump(2) + "\n");
   } catch (...) {
     std::error_code ec;
@@ -363,6 +374,7 @@ RunReport runSession(const RunSettings& o, Progress& progress) {
     total.triangleTests += best.stats.triangleTests;
     total.maxStepsPerRay = std::max(total.maxStepsPerRay, best.stats.maxStepsPerRay);
     total.maxTriangleTestsPerRay = std::max(total.maxTriangleTestsPerRay, best.stats.maxTriangleTestsPerRay);
+    if (best.stats.filter) total.filter = total.filter.value_or(FilterStats{}) += *best.stats.filter;
     if (k == 0) {
       first.width = best.width, first.height = best.height, first.rgb = best.rgb, first.stats = best.stats;
       first.steps = best.steps;
@@ -387,6 +399,7 @@ RunReport runSession(const RunSettings& o, Progress& progress) {
   report.triangleTestsPerRay = sumRays > 0 ? double(total.triangleTests) / sumRays : 0.0;
   report.maxStepsPerRay = total.maxStepsPerRay;
   report.maxTriangleTestsPerRay = total.maxTriangleTestsPerRay;
+  report.dacrt = meanFilter(total.filter, uint64_t(views.size()));
 
   if (!o.output.empty()) writeImage(o.output, first.width, first.height, first.rgb);
   if (!o.hits.empty()) {

@@ -450,6 +450,19 @@ def main_papay(args, argv):
     return bench_papay.main(args, binary, registry, out, bart, bart_present(bart), sys.modules[__name__], command)
 
 
+def main_dacrt(args, argv):
+    """--dacrt: seed 001's experiments (scripts/bench_dacrt.py) into docs/bench-dacrt/."""
+    import bench_dacrt
+    out = pathlib.Path(args.out).resolve() if args.out else REPO / "docs" / "bench-dacrt"
+    binary = pathlib.Path(args.binary).resolve()
+    if not os.access(binary, os.X_OK):
+        raise SystemExit(f"bench: no passtrace binary at {binary} (bash scripts/setup.sh builds it)")
+    registry = passtrace_registry.load(binary)
+    bart = bart_dir(args.bart_dir)
+    command = shown_command(["python3", "scripts/bench.py"] + (argv if argv is not None else sys.argv[1:]))
+    return bench_dacrt.main(args, binary, registry, out, bart, bart_present(bart), sys.modules[__name__], command)
+
+
 def main(argv=None):
     if argv is None:
         ensure_matplotlib()
@@ -461,6 +474,9 @@ def main(argv=None):
     m.add_argument("--papay", dest="mode", action="store_const", const="papay",
                    help="seed 003's experiments (scripts/bench_papay.py): kd traversals, binned builds, dynamic "
                         "scenes -> docs/bench-papay/REPORT.md")
+    m.add_argument("--dacrt", dest="mode", action="store_const", const="dacrt",
+                   help="seed 001's experiments (scripts/bench_dacrt.py): DACRT's whole frame against build + "
+                        "trace, an animation, its limits, split and conic packets -> docs/bench-dacrt/REPORT.md")
     parser.set_defaults(mode="quick")
     parser.add_argument("--binary", default=str(REPO / "build" / "passtrace"),
                         help="the passtrace to run; its --list --json gives the structures")
@@ -481,11 +497,14 @@ def main(argv=None):
     parser.add_argument("--timeout", type=int, help="seconds one passtrace run may take")
     parser.add_argument("--force", action="store_true", help="rerun runs that already finished")
     parser.add_argument("--report-only", action="store_true", help="write the report from finished runs, run nothing")
-    parser.add_argument("--frames", type=int, help="--papay: frames of each dynamic-scene run (default 30)")
-    parser.add_argument("--dynamic-size", type=int, help="--papay: image side of the dynamic-scene runs")
+    parser.add_argument("--frames", type=int, help="--papay: frames of each dynamic-scene run (default 30); "
+                        "--dacrt: of the animation (default 10)")
+    parser.add_argument("--dynamic-size", type=int, help="--papay/--dacrt: image side of the dynamic-scene runs")
     args = parser.parse_args(argv)
     if args.mode == "papay":
         return main_papay(args, argv)
+    if args.mode == "dacrt":
+        return main_dacrt(args, argv)
 
     if args.out:
         out = pathlib.Path(args.out)

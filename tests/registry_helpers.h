@@ -38,6 +38,13 @@ inline std::vector<std::pair<int, std::string>> everyStructureRun() {
         runs.emplace_back(int(r), std::string(s.name) + " --grid-kernels split");
       if (std::find(reads.begin(), reads.end(), BuildParam::KdStackSize) != reads.end())
         for (const char* k : {"1", "8"}) runs.emplace_back(int(r), std::string(s.name) + " --stack-size " + k);
+      // DACRT: its conic packets, and its recursion at rLimit = pLimit = 1.
+      if (std::find(reads.begin(), reads.end(), BuildParam::DacrtCones) != reads.end())
+        runs.emplace_back(int(r), std::string(s.name) + " --dacrt-cones");
+      if (std::find(reads.begin(), reads.end(), BuildParam::DacrtRLimit) != reads.end()) {
+        runs.emplace_back(int(r), std::string(s.name) + " --dacrt-rlimit 1 --dacrt-plimit 1");
+        runs.emplace_back(int(r), std::string(s.name) + " --dacrt-cones --dacrt-rlimit 1 --dacrt-plimit 1");
+      }
     }
   return runs;
 }

@@ -41,6 +41,10 @@ TEST(CliDefaults, EqualTheRegistrysBuildParameterDefaults) {
   EXPECT_EQ(o.kdBuilder, value(BuildParam::KdBuilder));
   EXPECT_EQ(o.kdTermination, value(BuildParam::KdTermination));
   EXPECT_EQ(o.dynamic, value(BuildParam::Dynamic));
+  EXPECT_EQ(number(o.dacrtRLimit), value(BuildParam::DacrtRLimit));
+  EXPECT_EQ(number(o.dacrtPLimit), value(BuildParam::DacrtPLimit));
+  EXPECT_EQ(o.dacrtCones ? "on" : "off", value(BuildParam::DacrtCones));
+  EXPECT_EQ(o.dacrtSplit, value(BuildParam::DacrtSplit));
 }
 
 TEST(CliDefaults, EveryBuildParameterHasAFlagAndADefault) {
