@@ -437,30 +437,57 @@ def ensure_matplotlib():
     os.execv(system, [system, os.path.abspath(__file__)] + sys.argv[1:])
 
 
-def main_papay(args, argv):
-    """--papay: seed 003's experiments (scripts/bench_papay.py) into docs/bench-papay/."""
-    import bench_papay
-    out = pathlib.Path(args.out).resolve() if args.out else REPO / "docs" / "bench-papay"
+def run_jobs(jobs, runner, report_only, label):
+    """The seed sections' driver: runs each (kind, meta, args, key) job that has
+    no finished record in runner.runs_dir (--report-only: reads them only).
+    Returns [(meta, record)] of the jobs with a record, and the seconds taken;
+    Ctrl-C stops early with what finished."""
+    started = time.monotonic()
+    records = []
+    try:
+        for i, (_, meta, run_args, key) in enumerate(jobs):
+            path = runner.runs_dir / f"{key}.json"
+            rec = read_json(path) if report_only else runner.finished(path, run_args)
+            if rec is None and not report_only:
+                log(f"[{i + 1}/{len(jobs)}] {key} ... elapsed {fmt_s(time.monotonic() - started)}")
+                rec = runner.execute(meta, run_args, path, (), key)
+                if rec["status"] != "ok":
+                    log(f"      failed: {rec['error']}")
+            if rec is not None:
+                records.append((meta, rec))
+    except KeyboardInterrupt:
+        log(f"bench {label}: interrupted; writing the report from the runs that finished")
+    for _, rec in records:
+        if rec.get("command"):
+            rec["command"] = shown_command(rec["command"])
+    return records, time.monotonic() - started
+
+
+def section_results(command, wall_s, parameters, skipped, missing, records, binary):
+    """results.json of a seed section: the runs with their plan entries and the machine."""
+    return {
+        "schema": 1, "generated_at": datetime.datetime.now().isoformat(timespec="seconds"),
+        "command": command, "wall_s": round(wall_s, 1), "parameters": parameters,
+        "skipped": skipped, "missing": missing,
+        "machine": machine_block([r for _, r in records], binary),
+        "runs_ok": sum(1 for _, r in records if r.get("status") == "ok"),
+        "runs_failed": sum(1 for _, r in records if r.get("status") == "error"),
+        "runs": [dict(r, meta=m) for m, r in records],
+    }
+
+
+def main_section(args, argv, section):
+    """--papay or --dacrt: a seed's experiments (scripts/bench_<section>.py) into docs/bench-<section>/."""
+    import importlib
+    module = importlib.import_module(f"bench_{section}")
+    out = pathlib.Path(args.out).resolve() if args.out else REPO / "docs" / f"bench-{section}"
     binary = pathlib.Path(args.binary).resolve()
     if not os.access(binary, os.X_OK):
         raise SystemExit(f"bench: no passtrace binary at {binary} (bash scripts/setup.sh builds it)")
     registry = passtrace_registry.load(binary)
     bart = bart_dir(args.bart_dir)
     command = shown_command(["python3", "scripts/bench.py"] + (argv if argv is not None else sys.argv[1:]))
-    return bench_papay.main(args, binary, registry, out, bart, bart_present(bart), sys.modules[__name__], command)
-
-
-def main_dacrt(args, argv):
-    """--dacrt: seed 001's experiments (scripts/bench_dacrt.py) into docs/bench-dacrt/."""
-    import bench_dacrt
-    out = pathlib.Path(args.out).resolve() if args.out else REPO / "docs" / "bench-dacrt"
-    binary = pathlib.Path(args.binary).resolve()
-    if not os.access(binary, os.X_OK):
-        raise SystemExit(f"bench: no passtrace binary at {binary} (bash scripts/setup.sh builds it)")
-    registry = passtrace_registry.load(binary)
-    bart = bart_dir(args.bart_dir)
-    command = shown_command(["python3", "scripts/bench.py"] + (argv if argv is not None else sys.argv[1:]))
-    return bench_dacrt.main(args, binary, registry, out, bart, bart_present(bart), sys.modules[__name__], command)
+    return module.main(args, binary, registry, out, bart, bart_present(bart), sys.modules[__name__], command)
 
 
 def main(argv=None):
@@ -502,9 +529,9 @@ def main(argv=None):
     parser.add_argument("--dynamic-size", type=int, help="--papay/--dacrt: image side of the dynamic-scene runs")
     args = parser.parse_args(argv)
     if args.mode == "papay":
-        return main_papay(args, argv)
+        return main_section(args, argv, "papay")
     if args.mode == "dacrt":
-        return main_dacrt(args, argv)
+        return main_section(args, argv, "dacrt")
 
     if args.out:
         out = pathlib.Path(args.out)

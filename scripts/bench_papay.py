@@ -462,8 +462,6 @@ def write_report(out_dir, results, records):
 
 def main(args, binary, registry, out, bart, bart_ok, bench, command):
     """Runs the plan (skipping runs that finished earlier) and writes the report."""
-    import datetime
-    import time
     scenes = args.scenes.split(",") if args.scenes else [s for s, _ in SCENES]
     unknown = [s for s in scenes if s not in dict(SCENES)]
     if unknown:
@@ -471,35 +469,9 @@ def main(args, binary, registry, out, bart, bart_ok, bench, command):
     plan = Plan(args.size or 256, args.repeats or 3, registry, scenes, bart_ok,
                 frames=args.frames, dyn_size=args.dynamic_size)
     runner = bench.Runner(binary, bart, out, args.timeout or 900, args.force)
-    started = time.monotonic()
-    records = []
-    try:
-        for i, (kind, meta, run_args, key) in enumerate(plan.jobs):
-            path = runner.runs_dir / f"{key}.json"
-            rec = bench.read_json(path) if args.report_only else runner.finished(path, run_args)
-            if rec is None and not args.report_only:
-                bench.log(f"[{i + 1}/{len(plan.jobs)}] {key} ... elapsed {bench.fmt_s(time.monotonic() - started)}")
-                rec = runner.execute(meta, run_args, path, (), key)
-                if rec["status"] != "ok":
-                    bench.log(f"      failed: {rec['error']}")
-            if rec is not None:
-                records.append((meta, rec))
-    except KeyboardInterrupt:
-        bench.log("bench --papay: interrupted; writing the report from the runs that finished")
-    for _, rec in records:
-        if rec.get("command"):
-            rec["command"] = bench.shown_command(rec["command"])
-    results = {
-        "schema": 1, "generated_at": datetime.datetime.now().isoformat(timespec="seconds"),
-        "command": command, "wall_s": round(time.monotonic() - started, 1),
-        "parameters": {"size": plan.size, "repeats": plan.repeats, "dynamic_size": plan.dyn_size,
-                       "scenes": scenes},
-        "skipped": plan.skipped, "missing": plan.missing,
-        "machine": bench.machine_block([r for _, r in records], binary),
-        "runs_ok": sum(1 for _, r in records if r.get("status") == "ok"),
-        "runs_failed": sum(1 for _, r in records if r.get("status") == "error"),
-        "runs": [dict(r, meta=m) for m, r in records],
-    }
+    records, wall_s = bench.run_jobs(plan.jobs, runner, args.report_only, "--papay")
+    parameters = {"size": plan.size, "repeats": plan.repeats, "dynamic_size": plan.dyn_size, "scenes": scenes}
+    results = bench.section_results(command, wall_s, parameters, plan.skipped, plan.missing, records, binary)
     bench.write_json_atomic(out / "results.json", results)
     write_report(out, results, records)
     bench.log(f"bench --papay: {results['runs_ok']} ok, {results['runs_failed']} failed; report: "
