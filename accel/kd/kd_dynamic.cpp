@@ -16,21 +16,6 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-// The rows whose traversal the strategies run (registry rows that read
-// BuildParam::Dynamic). A new kd traversal is one line here.
-struct DynamicRow {
-  std::string_view name;
-  std::optional<KdStreamVariant> variant;  // nullopt: the CPU stack traversal
-};
-const DynamicRow kDynamicRows[] = {
-    {"kd-tree", std::nullopt},
-    {"kd-restart", KdStreamVariant::Restart},
-    {"kd-backtrack", KdStreamVariant::Backtrack},
-    {"kd-pushdown", KdStreamVariant::PushDown},
-    {"kd-shortstack", KdStreamVariant::ShortStack},
-    {"kd-pushdown-shortstack", KdStreamVariant::PushDownShortStack},
-    {"kd-stack", KdStreamVariant::Stack},
-};
 
 // One tree traced as its row does on the CPU.
 class TreeTracer {
@@ -123,8 +108,12 @@ std::optional<DynamicStrategy> dynamicStrategyByName(std::string_view name) {
 }
 
 std::optional<KdStreamVariant> kdDynamicVariant(std::string_view structureName) {
-  for (const DynamicRow& row : kDynamicRows)
-    if (row.name == structureName) return row.variant;
+  // The registry rows reading BuildParam::Dynamic: kd-tree (the CPU stack
+  // traversal) and every stream traversal, found by the name it registers.
+  if (structureName == "kd-tree") return std::nullopt;
+  for (KdStreamVariant v : {KdStreamVariant::Restart, KdStreamVariant::Backtrack, KdStreamVariant::PushDown,
+                            KdStreamVariant::ShortStack, KdStreamVariant::PushDownShortStack, KdStreamVariant::Stack})
+    if (kdStreamName(v) == structureName) return v;
   throw std::invalid_argument("--dynamic: " + std::string(structureName) + " has no dynamic strategies");
 }
 

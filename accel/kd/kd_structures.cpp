@@ -18,17 +18,6 @@
 namespace passtrace {
 namespace {
 
-const char* kdStreamName(KdStreamVariant variant) {
-  switch (variant) {
-    case KdStreamVariant::Restart: return "kd-restart";
-    case KdStreamVariant::Backtrack: return "kd-backtrack";
-    case KdStreamVariant::PushDown: return "kd-pushdown";
-    case KdStreamVariant::ShortStack: return "kd-shortstack";
-    case KdStreamVariant::PushDownShortStack: return "kd-pushdown-shortstack";
-    case KdStreamVariant::Stack: return "kd-stack";
-  }
-  return "?";
-}
 
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -87,6 +76,18 @@ std::unique_ptr<GpuTraversal> makeStream(KdStreamVariant variant, std::span<cons
 }
 
 }  // namespace
+
+const char* kdStreamName(KdStreamVariant variant) {
+  switch (variant) {
+    case KdStreamVariant::Restart: return "kd-restart";
+    case KdStreamVariant::Backtrack: return "kd-backtrack";
+    case KdStreamVariant::PushDown: return "kd-pushdown";
+    case KdStreamVariant::ShortStack: return "kd-shortstack";
+    case KdStreamVariant::PushDownShortStack: return "kd-pushdown-shortstack";
+    case KdStreamVariant::Stack: return "kd-stack";
+  }
+  return "?";
+}
 
 KdBuildConfig kdConfigFor(const AccelBuildConfig& config) {
   KdBuildConfig kd;

@@ -52,6 +52,10 @@ KdStreamBuild buildKdStream(KdStreamVariant variant, std::span<const Triangle> t
 KdStreamBuild flattenKdStream(KdStreamVariant variant, const KdTree& tree, size_t triangleCount,
                               int shortStackSize = AccelBuildConfig{}.kdStackSize);
 
+// The registry row name of a stream traversal ("kd-restart", ...): its
+// AccelStats::name, and how --dynamic finds a row's variant.
+const char* kdStreamName(KdStreamVariant variant);
+
 // The registry's factories (accel/registry.cpp).
 std::unique_ptr<CpuAccelerator> makeKdTreeCpu(std::span<const Triangle> tris, const AccelBuildConfig& config);
 std::unique_ptr<CpuAccelerator> makeKdPbrtCpu(std::span<const Triangle> tris, const AccelBuildConfig& config);
