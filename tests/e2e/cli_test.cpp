@@ -164,6 +164,11 @@ TEST_F(Cli, BadInputsGiveOneLineErrorsAndNoOutput) {
   expectOneLineError(run("-s cornell -r 7" + outs), "-r");
   for (const char* k : {"0", "9", "x", "2.5"})
     expectOneLineError(run("-s cornell -a kd-shortstack --stack-size " + std::string(k) + outs), "--stack-size");
+  expectOneLineError(run("-s cornell -r 1 -a kd-tree --kd-builder fast" + outs), "--kd-builder");
+  expectOneLineError(run("-s cornell -r 1 -a kd-tree --kd-termination x" + outs), "--kd-termination");
+  expectOneLineError(run("-s cornell -r 1 -a dacrt --dacrt-rlimit 0" + outs), "--dacrt-rlimit");
+  expectOneLineError(run("-s cornell -r 1 -a dacrt --dacrt-plimit -1" + outs), "--dacrt-plimit");
+  expectOneLineError(run("-s cornell -r 1 -a dacrt --dacrt-split middle" + outs), "--dacrt-split");
   expectOneLineError(run("-s cornell -r 1 -w 20000 -o " + path("x.png")), "too large");
   expectOneLineError(run("-s cornell --eye 1,2" + outs), "--eye");
   expectOneLineError(run("-s cornell --eye 1,2,nan" + outs), "--eye");
