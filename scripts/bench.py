@@ -88,6 +88,15 @@ MODES = {
         "out": None,
     },
 }
+# The seed sections: --NAME runs scripts/bench_NAME.py into docs/bench-NAME/.
+SECTIONS = {
+    "papay": "seed 003's experiments (scripts/bench_papay.py): kd traversals, binned builds, dynamic scenes "
+             "-> docs/bench-papay/REPORT.md",
+    "dacrt": "seed 001's experiments (scripts/bench_dacrt.py): DACRT's whole frame against build + trace, an "
+             "animation, its limits, split and conic packets -> docs/bench-dacrt/REPORT.md",
+    "rt2": "seed 002's Fig. 3 (scripts/bench_rt2.py): ropes, BIH, stack BVH (SAH/SBVH/middle), kd, grid and "
+           "octree with Whitted and AO rays -> docs/bench-rt2/REPORT.md",
+}
 HEAT_STRUCTURE = ("gpu", "kk-bvh")  # the structure whose traversal steps are drawn per scene
 
 
@@ -477,7 +486,7 @@ def section_results(command, wall_s, parameters, skipped, missing, records, bina
 
 
 def main_section(args, argv, section):
-    """--papay or --dacrt: a seed's experiments (scripts/bench_<section>.py) into docs/bench-<section>/."""
+    """--papay, --dacrt, ...: a seed's experiments (scripts/bench_<section>.py) into docs/bench-<section>/."""
     import importlib
     module = importlib.import_module(f"bench_{section}")
     out = pathlib.Path(args.out).resolve() if args.out else REPO / "docs" / f"bench-{section}"
@@ -498,12 +507,8 @@ def main(argv=None):
     m.add_argument("--quick", dest="mode", action="store_const", const="quick", help="about 2-3 minutes at 512x512 (default)")
     m.add_argument("--full", dest="mode", action="store_const", const="full", help="the thesis's parameters")
     m.add_argument("--tiny", dest="mode", action="store_const", const="tiny", help="Cornell, 16x16: the plumbing test")
-    m.add_argument("--papay", dest="mode", action="store_const", const="papay",
-                   help="seed 003's experiments (scripts/bench_papay.py): kd traversals, binned builds, dynamic "
-                        "scenes -> docs/bench-papay/REPORT.md")
-    m.add_argument("--dacrt", dest="mode", action="store_const", const="dacrt",
-                   help="seed 001's experiments (scripts/bench_dacrt.py): DACRT's whole frame against build + "
-                        "trace, an animation, its limits, split and conic packets -> docs/bench-dacrt/REPORT.md")
+    for name, text in SECTIONS.items():
+        m.add_argument(f"--{name}", dest="mode", action="store_const", const=name, help=text)
     parser.set_defaults(mode="quick")
     parser.add_argument("--binary", default=str(REPO / "build" / "passtrace"),
                         help="the passtrace to run; its --list --json gives the structures")
@@ -528,10 +533,8 @@ def main(argv=None):
                         "--dacrt: of the animation (default 10)")
     parser.add_argument("--dynamic-size", type=int, help="--papay/--dacrt: image side of the dynamic-scene runs")
     args = parser.parse_args(argv)
-    if args.mode == "papay":
-        return main_section(args, argv, "papay")
-    if args.mode == "dacrt":
-        return main_section(args, argv, "dacrt")
+    if args.mode in SECTIONS:
+        return main_section(args, argv, args.mode)
 
     if args.out:
         out = pathlib.Path(args.out)

@@ -27,6 +27,8 @@ run of this script are what the report compares with the seed's.
 """
 import statistics
 
+from report_tables import num, md_table, result, verdict
+
 SCENES = [
     ("cows", ["-s", "cows"]),
     ("robots", ["-s", "robots"]),
@@ -132,14 +134,6 @@ class Plan:
 
 # ---------------------------------------------------------------- the report
 
-def num(v, digits=1):
-    if v is None:
-        return "–"
-    if isinstance(v, float) and abs(v) >= 1000:
-        return f"{v:,.0f}"
-    if isinstance(v, int):
-        return f"{v:,}"
-    return f"{v:.{digits}f}"
 
 
 def big(v):
@@ -151,18 +145,10 @@ def big(v):
     return f"{v:.0f}"
 
 
-def md_table(header, rows):
-    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    lines += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
-    return "\n".join(lines)
 
 
-def result(rec):
-    return rec["result"] if rec and rec.get("status") == "ok" else None
 
 
-def verdict(holds):
-    return "**holds**" if holds else "**does not hold**"
 
 
 def whole_ms(r):

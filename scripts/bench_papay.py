@@ -31,6 +31,8 @@ what the report compares with the seed's RTX 4080 numbers.
 import pathlib
 import statistics
 
+from report_tables import num, md_table, result, field, verdict
+
 # The seed's traversal names, and passtrace's structure and stack size for each.
 TRAVERSALS = [
     ("Stack", "kd-stack", None),
@@ -164,38 +166,14 @@ class Plan:
 
 # ---------------------------------------------------------------- the report
 
-def num(v, digits=1):
-    if v is None:
-        return "–"
-    if isinstance(v, float) and abs(v) >= 1000:
-        return f"{v:,.0f}"
-    return f"{v:.{digits}f}"
 
 
-def md_table(header, rows):
-    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    lines += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
-    return "\n".join(lines)
 
 
-def result(rec):
-    return rec["result"] if rec and rec.get("status") == "ok" else None
 
 
-def field(r, *names):
-    """The first of `names` present in a run's JSON (flat accel_* keys, or a structure object)."""
-    for n in names:
-        if r is None:
-            return None
-        if n in r:
-            return r[n]
-        if isinstance(r.get("structure"), dict) and n in r["structure"]:
-            return r["structure"][n]
-    return None
 
 
-def verdict(holds):
-    return "**holds**" if holds else "**does not hold**"
 
 
 def traversal_section(records, scenes):
