@@ -8,6 +8,7 @@
 #include "accel/dacrt/dacrt_structure.h"
 #include "accel/grid/grid_structures.h"
 #include "accel/kd/kd_structures.h"
+#include "accel/kd/kd_ropes_structures.h"
 #include "accel/octree/octree_structure.h"
 #if PASSTRACE_HAVE_EMBREE
 #include "accel/embree/embree_accelerator.h"
@@ -123,6 +124,13 @@ std::vector<Structure> makeRows() {
        .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeDacrtCpu,
        .memory = {48, 0}, .reads = {P::DacrtRLimit, P::DacrtPLimit, P::DacrtCones, P::DacrtSplit}},
+      // Seed 002: kd-restart's tree with ropes (Popov et al. 2007); memory not measured yet.
+      {.name = "kd-ropes", .family = "kd",
+       .description = "kd-tree with six ropes per leaf, stackless from the entry point; on the CPU the kernel's "
+                      "algorithm",
+       .renderers = {Cpu, Gpu}, .number = std::nullopt, .numberedOn = {},
+       .cpu = makeKdRopesMirror, .stream = makeKdRopesStream, .mirror = makeKdRopesMirror,
+       .memory = {0, 0}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination}},
   };
 #if PASSTRACE_HAVE_EMBREE
   rows.push_back({.name = "embree", .family = "embree",
