@@ -131,6 +131,14 @@ std::vector<Structure> makeRows() {
        .renderers = {Cpu, Gpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeKdRopesMirror, .stream = makeKdRopesStream, .mirror = makeKdRopesMirror,
        .memory = {0, 0}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination}},
+      // Seed 002's standard kd traversal: kd-stack over 8-byte nodes (kd_compact_node.h); memory not measured yet.
+      {.name = "kd-compact", .family = "kd",
+       .description = "kd-tree, full stack as kd-stack over compact 8-byte nodes; on the CPU the kernel's algorithm",
+       .renderers = {Cpu, Gpu}, .number = std::nullopt, .numberedOn = {},
+       .cpu = makeKdStreamMirror<KdStreamVariant::Compact>,
+       .stream = makeKdStream<KdStreamVariant::Compact>,
+       .mirror = makeKdStreamMirror<KdStreamVariant::Compact>,
+       .memory = {0, 0}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination}},
   };
 #if PASSTRACE_HAVE_EMBREE
   rows.push_back({.name = "embree", .family = "embree",
