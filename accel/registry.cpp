@@ -8,6 +8,7 @@
 #include "accel/dacrt/dacrt_structure.h"
 #include "accel/grid/grid_structures.h"
 #include "accel/kd/kd_structures.h"
+#include "accel/kd/kd_ropes_structures.h"
 #include "accel/octree/octree_structure.h"
 #if PASSTRACE_HAVE_EMBREE
 #include "accel/embree/embree_accelerator.h"
@@ -123,6 +124,22 @@ std::vector<Structure> makeRows() {
        .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeDacrtCpu,
        .memory = {48, 0}, .reads = {P::DacrtRLimit, P::DacrtPLimit, P::DacrtCones, P::DacrtSplit}},
+      // Seed 002: kd-restart's tree with ropes (Popov et al. 2007). Memory measured for kd-ropes and kd-compact
+      // in one session in which kd-stack measured 693 bytes per triangle on the CPU.
+      {.name = "kd-ropes", .family = "kd",
+       .description = "kd-tree with six ropes per leaf, stackless from the entry point; on the CPU the kernel's "
+                      "algorithm",
+       .renderers = {Cpu, Gpu}, .number = std::nullopt, .numberedOn = {},
+       .cpu = makeKdRopesMirror, .stream = makeKdRopesStream, .mirror = makeKdRopesMirror,
+       .memory = {870, 865}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination}},
+      // Seed 002's standard kd traversal: kd-stack over 8-byte nodes (kd_compact_node.h).
+      {.name = "kd-compact", .family = "kd",
+       .description = "kd-tree, full stack as kd-stack over compact 8-byte nodes; on the CPU the kernel's algorithm",
+       .renderers = {Cpu, Gpu}, .number = std::nullopt, .numberedOn = {},
+       .cpu = makeKdStreamMirror<KdStreamVariant::Compact>,
+       .stream = makeKdStream<KdStreamVariant::Compact>,
+       .mirror = makeKdStreamMirror<KdStreamVariant::Compact>,
+       .memory = {620, 598}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination}},
   };
 #if PASSTRACE_HAVE_EMBREE
   rows.push_back({.name = "embree", .family = "embree",

@@ -15,6 +15,7 @@ std::vector<std::string> defines(KdStreamVariant variant, std::string pages, Tri
   if (kdRestartsFromPushDownRoot(variant)) out.push_back("KD_PUSHDOWN");
   if (kdHasStack(variant)) out.push_back("KD_STACK");
   if (kdHasRayRecord(variant)) out.push_back("KD_RECORD");
+  if (variant == KdStreamVariant::Compact) out.push_back("KD_COMPACT");
   return out;
 }
 
@@ -33,6 +34,7 @@ std::string kernelName(KdStreamVariant variant) {
     case KdStreamVariant::ShortStack: return "kd_shortstack";
     case KdStreamVariant::PushDownShortStack: return "kd_pushdown_shortstack";
     case KdStreamVariant::Stack: return "kd_stack";
+    case KdStreamVariant::Compact: return "kd_compact";
   }
   return "kd";
 }

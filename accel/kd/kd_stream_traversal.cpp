@@ -2,6 +2,7 @@
 
 #include <limits>
 
+#include "accel/kd/kd_compact_node.h"
 #include "accel/reference_lists.h"
 #include "stream/texel_address.h"
 
@@ -11,6 +12,12 @@ namespace {
 using Cursor = KdStreamCursor;
 
 uint32_t stride(const KdStreamData& d) { return d.variant == KdStreamVariant::Backtrack ? 3u : 1u; }
+
+// A node's (first) texel in the restart layout's form, decoding compact nodes.
+glm::vec4 nodeTexel(const KdStreamData& d, uint32_t node) {
+  if (d.variant == KdStreamVariant::Compact) return kdCompactNodeTexel(d.nodes, node);
+  return d.nodes[stride(d) * node];
+}
 
 float listEntry(const KdStreamData& d, uint32_t entry) { return d.lists[entry >> 2][int(entry & 3u)]; }
 
@@ -52,7 +59,7 @@ void step(const KdStreamData& d, const Ray& ray, const glm::vec3& invDir, bool a
     const uint32_t entry = unpackIndex(c.mode);
     const float id = listEntry(d, entry);
     if (id < 0.0f) {
-      leafFinished(d, c, d.nodes[stride(d) * c.node]);
+      leafFinished(d, c, nodeTexel(d, c.node));
     } else {
       ++c.stats.triangleTests;
       const uint32_t t = unpackIndex(id);
@@ -78,7 +85,7 @@ void step(const KdStreamData& d, const Ray& ray, const glm::vec3& invDir, bool a
     }
     return;
   }
-  const glm::vec4 node = d.nodes[stride(d) * c.node];
+  const glm::vec4 node = nodeTexel(d, c.node);
   if (node.w < -1.5f) {  // internal: w = -(axis + 2)
     const int axis = int(-node.w) - 2;
     const float split = node.y;

@@ -34,19 +34,21 @@ namespace passtrace {
 //   a push onto a full stack drops the oldest entry, an empty stack restarts
 //   from the root. PushDownShortStack: restarts from the push-down root.
 // Stack: a stack as deep as the tree, which never overflows.
-enum class KdStreamVariant { Restart, Backtrack, PushDown, ShortStack, PushDownShortStack, Stack };
+// Compact: Stack over 8-byte nodes (kd_compact_node.h), the seed-002 layout.
+enum class KdStreamVariant { Restart, Backtrack, PushDown, ShortStack, PushDownShortStack, Stack, Compact };
 
 inline bool kdRestartsFromPushDownRoot(KdStreamVariant v) {
   return v == KdStreamVariant::PushDown || v == KdStreamVariant::PushDownShortStack;
 }
 inline bool kdHasStack(KdStreamVariant v) {
-  return v == KdStreamVariant::ShortStack || v == KdStreamVariant::PushDownShortStack || v == KdStreamVariant::Stack;
+  return v == KdStreamVariant::ShortStack || v == KdStreamVariant::PushDownShortStack || v == KdStreamVariant::Stack ||
+         v == KdStreamVariant::Compact;
 }
 // Whether the kernel keeps a per-ray record in a storage buffer (kd_ray_record.glsl).
 inline bool kdHasRayRecord(KdStreamVariant v) { return kdRestartsFromPushDownRoot(v) || kdHasStack(v); }
 
 // The data the kernel reads: node texels (1 per node for restart, 3 for
-// backtrack), reference-list texels and triangle texels (3 per triangle).
+// backtrack, half a texel for compact), reference-list texels and triangle texels (3 per triangle).
 struct KdStreamData {
   KdStreamVariant variant = KdStreamVariant::Restart;
   Aabb sceneBox;

@@ -85,6 +85,7 @@ const char* kdStreamName(KdStreamVariant variant) {
     case KdStreamVariant::ShortStack: return "kd-shortstack";
     case KdStreamVariant::PushDownShortStack: return "kd-pushdown-shortstack";
     case KdStreamVariant::Stack: return "kd-stack";
+    case KdStreamVariant::Compact: return "kd-compact";
   }
   return "?";
 }
@@ -119,6 +120,7 @@ KdBuildConfig kdPbrtConfigFor(const AccelBuildConfig& config) {
 KdStreamBuild flattenKdStream(KdStreamVariant variant, const KdTree& tree, size_t triangleCount,
                               int shortStackSize) {
   KdStreamBuild build{variant == KdStreamVariant::Backtrack ? flattenKdBacktrack(tree, triangleCount)
+                      : variant == KdStreamVariant::Compact ? flattenKdCompact(tree, triangleCount)
                                                             : flattenKdRestart(tree, triangleCount),
                       tree.bounds, AccelStats{}, 0};
   AccelStats& s = build.stats;
@@ -130,7 +132,7 @@ KdStreamBuild flattenKdStream(KdStreamVariant variant, const KdTree& tree, size_
   // Push-down takes a subset of restart's steps; a stack pop or restart
   // reaches a leaf through at most depth nodes like a restart does.
   build.maxStepsPerRay = 2 * (uint64_t(s.leaves) + 1) * (s.depth + 2) + 2 * s.nodes + build.texels.listEntries;
-  if (variant == KdStreamVariant::Stack) {
+  if (variant == KdStreamVariant::Stack || variant == KdStreamVariant::Compact) {
     // A path holds depth - 1 internal nodes, each pushing at most one entry.
     build.stackSize = std::max<uint32_t>(1, s.depth);
   } else if (kdHasStack(variant)) {
@@ -199,6 +201,7 @@ PASSTRACE_KD_STREAM_VARIANT(KdStreamVariant::PushDown)
 PASSTRACE_KD_STREAM_VARIANT(KdStreamVariant::ShortStack)
 PASSTRACE_KD_STREAM_VARIANT(KdStreamVariant::PushDownShortStack)
 PASSTRACE_KD_STREAM_VARIANT(KdStreamVariant::Stack)
+PASSTRACE_KD_STREAM_VARIANT(KdStreamVariant::Compact)
 #undef PASSTRACE_KD_STREAM_VARIANT
 
 }  // namespace passtrace

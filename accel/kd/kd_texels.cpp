@@ -1,7 +1,9 @@
 #include "accel/kd/kd_texels.h"
 
 #include <span>
+#include <stdexcept>
 
+#include "accel/kd/kd_compact_node.h"
 #include "accel/reference_lists.h"
 #include "stream/texel_address.h"
 
@@ -49,6 +51,42 @@ KdTexels flattenKdRestart(const KdTree& tree, size_t triangleCount) {
 
 KdTexels flattenKdBacktrack(const KdTree& tree, size_t triangleCount) {
   return flatten(tree, triangleCount, kKdBacktrackStride);
+}
+
+KdTexels flattenKdCompact(const KdTree& tree, size_t triangleCount) {
+  KdTexels out;
+  out.nodeStride = 0;
+  out.nodes.assign((tree.nodes.size() + 1) / 2, glm::vec4(0.0f));
+  ReferenceLists lists;
+  for (size_t i = 0; i < tree.nodes.size(); ++i) {
+    const KdNode& node = tree.nodes[i];
+    glm::vec2 packed;
+    if (node.isLeaf()) {
+      uint32_t payload = 0;
+      if (node.refCount > 0)
+        payload = lists.append(std::span<const uint32_t>(tree.references.data() + node.firstRef, node.refCount)) + 1;
+      if (payload > kKdCompactMaxPayload) throw std::length_error("kd-compact: too many triangle references");
+      packed = encodeKdCompactNode(0.0f, kKdCompactLeafCode, payload);
+    } else {
+      if (node.rightChild > kKdCompactMaxPayload) throw std::length_error("kd-compact: too many nodes");
+      packed = encodeKdCompactNode(node.split, node.axis, node.rightChild);
+    }
+    glm::vec4& texel = out.nodes[i / 2];
+    if (i & 1) {
+      texel.z = packed.x;
+      texel.w = packed.y;
+    } else {
+      texel.x = packed.x;
+      texel.y = packed.y;
+    }
+  }
+  out.lists = lists.texels();
+  out.listEntries = lists.entries().size();
+  out.floatsPerTriangle =
+      triangleCount == 0 ? 0.0
+                         : (2.0 * static_cast<double>(tree.nodes.size()) + static_cast<double>(out.listEntries)) /
+                               static_cast<double>(triangleCount);
+  return out;
 }
 
 double kdFloatsPerTriangle(const KdTree& tree, size_t triangleCount, uint32_t nodeStride) {

@@ -38,6 +38,10 @@ inline constexpr uint32_t kKdBacktrackStride = 3;
 // An empty tree gives no texels and 0 floats per triangle.
 KdTexels flattenKdRestart(const KdTree& tree, size_t triangleCount);
 KdTexels flattenKdBacktrack(const KdTree& tree, size_t triangleCount);
+// kd-compact: 8 bytes per node, two nodes per texel (kd_compact_node.h);
+// nodeStride 0 marks the layout, floatsPerTriangle counts 2 floats per node.
+// Throws std::length_error past kKdCompactMaxPayload nodes or list entries.
+KdTexels flattenKdCompact(const KdTree& tree, size_t triangleCount);
 
 // The floatsPerTriangle either flattening reports, without building texels:
 // each non-empty leaf's list holds its references and an end marker.

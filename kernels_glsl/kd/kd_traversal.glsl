@@ -25,6 +25,22 @@ const uint NODE_STRIDE = 3u;
 const uint NODE_STRIDE = 1u;
 #endif
 
+// A node's (first) texel in the restart layout's form. KD_COMPACT: 8-byte
+// nodes, two per texel, decoded (accel/kd/kd_compact_node.h; parent -1).
+vec4 kdNodeTexel(ConstStream nodes, uint node) {
+#ifdef KD_COMPACT
+  vec4 pair = fetchTexel(nodes, node >> 1u);
+  vec2 n = (node & 1u) != 0u ? pair.zw : pair.xy;
+  uint word = unpackIndex(n.y);
+  uint code = word & 3u;
+  uint payload = word >> 2u;
+  if (code == 3u) return vec4(0.0, 0.0, -1.0, payload == 0u ? -1.0 : packIndex(payload - 1u));
+  return vec4(packIndex(payload), n.x, -1.0, -(float(code) + 2.0));
+#else
+  return fetchTexel(nodes, NODE_STRIDE * node);
+#endif
+}
+
 struct KdRay {
   vec3 origin, direction, invDir;
   bool anyHit;
@@ -93,7 +109,7 @@ void kdStep(inout KdRay ray, ConstStream nodes, ConstStream lists, ConstStream t
     uint entry = unpackIndex(ray.mode);
     float id = fetchScalar(lists, entry);
     if (id < 0.0) {
-      leafFinished(ray, fetchTexel(nodes, NODE_STRIDE * ray.node));
+      leafFinished(ray, kdNodeTexel(nodes, ray.node));
     } else {
       ray.tests += 1.0;
       bool found = testListedTriangle(triangles, id, ray.origin, ray.direction, ray.hit);
@@ -119,7 +135,7 @@ void kdStep(inout KdRay ray, ConstStream nodes, ConstStream lists, ConstStream t
     return;
   }
 #endif
-  vec4 node = fetchTexel(nodes, NODE_STRIDE * ray.node);
+  vec4 node = kdNodeTexel(nodes, ray.node);
   if (node.w < -1.5) {  // internal: w = -(axis + 2)
     int axis = int(-node.w) - 2;
     float split = node.y;

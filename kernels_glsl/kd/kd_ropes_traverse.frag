@@ -1,0 +1,51 @@
+// kd-ropes traversal and intersection: up to uLoopLimit steps of
+// kd_ropes_traversal.glsl per pass. State (packed node, steps, tests, hasWork)
+// and aux (mode, tEntry, unused, sceneMax) as kd_init.frag writes them.
+#include "texel_address.glsl"
+#include "intersect.glsl"
+#include "ray_kinds.glsl"
+#include "reference_lists.glsl"
+
+layout(early_fragment_tests) in;
+
+uniform sampler2D uOrigin;
+uniform sampler2D uDirection;
+uniform sampler2D uState;
+uniform sampler2D uHit;
+uniform sampler2D uAux;
+uniform ConstStream uNodes;
+uniform ConstStream uLists;
+uniform ConstStream uTriangles;
+uniform int uLoopLimit;
+uniform uint uMaxSteps;
+
+#include "kd/kd_ropes_traversal.glsl"
+
+layout(location = 0) out vec4 outState;
+layout(location = 1) out vec4 outHit;
+layout(location = 2) out vec4 outAux;
+
+void main() {
+  vec4 origin = readElement(uOrigin);
+  vec4 direction = readElement(uDirection);
+  vec4 state = readElement(uState);
+  vec4 aux = readElement(uAux);
+  KdRopesRay ray;
+  ray.origin = origin.xyz;
+  ray.direction = direction.xyz;
+  ray.invDir = safeInverse(direction.xyz);
+  ray.anyHit = origin.w == RAY_SHADOW;
+  ray.node = unpackIndex(state.x);
+  ray.steps = state.y;
+  ray.tests = state.z;
+  ray.mode = aux.x;
+  ray.tEntry = aux.y;
+  ray.sceneMax = aux.w;
+  ray.hit = readElement(uHit);
+  ray.done = false;
+  for (int i = 0; i < uLoopLimit && !ray.done; ++i)
+    kdRopesStep(ray, uNodes, uLists, uTriangles);
+  outState = vec4(packIndex(ray.node), ray.steps, ray.tests, ray.done ? 0.0 : 1.0);
+  outHit = ray.hit;
+  outAux = vec4(ray.mode, ray.tEntry, aux.z, ray.sceneMax);
+}
