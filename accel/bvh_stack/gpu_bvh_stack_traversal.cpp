@@ -15,7 +15,8 @@ GpuBvhStackTraversal::GpuBvhStackTraversal(const BvhStackTexels& texels, const s
       triangles_(triangleTexels, "triangles", config.maxPageTexels),
       init_("bvh_stack_init", "bvh_stack/bvh_stack_init.frag", StreamKernel::Depth::Test, {}),
       traverse_("bvh_stack", "bvh_stack/bvh_stack_traverse.frag", StreamKernel::Depth::Test,
-                {streamPagesDefine({&nodes_, &references_, &triangles_}), triangleTestDefine(config.build.triangleTest)}),
+                {streamPagesDefine({&nodes_, &references_, &triangles_}),
+                 triangleTestDefine(config.build.triangleTest)}),
       stats_(std::move(stats)),
       stackSize_(std::max(1u, stackSize)),
       maxPasses_(maxStepsPerRay / uint64_t(config.loopLimit) + 2) {

@@ -67,7 +67,8 @@ SpatialSplit findSpatialSplit(std::span<const Triangle> tris, std::span<const Bv
       nRight -= exits[b];
       if (nLeft == 0 || nRight == 0) continue;
       const float weighted = area(leftBox) * float(nLeft) + area(rightBox[b + 1]) * float(nRight);
-      const float cost = config.traversalCost + config.intersectionCost * (nodeArea > 0.0f ? weighted / nodeArea : 0.0f);
+      const float cost =
+          config.traversalCost + config.intersectionCost * (nodeArea > 0.0f ? weighted / nodeArea : 0.0f);
       if (cost < best.cost) best = {cost, axis, lo + width * float(b + 1)};
     }
   }
