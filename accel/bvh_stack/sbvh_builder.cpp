@@ -161,18 +161,18 @@ BinaryBvh buildSbvh(std::span<const Triangle> tris, const BvhStackConfig& config
                           SpatialSplit spatial;
                           const float overlap = object.valid() ? area(intersect(object.left, object.right)) : kInfinity;
                           if (budget > 0 && overlap > minOverlap) spatial = findSpatialSplit(tris, refs, box, config);
-                          const float best = std::min(object.cost, spatial.cost);
-                          if (refs.size() <= config.maxLeafSize && leafCost(refs.size(), config) <= best) return false;
+                          const bool leafAllowed = refs.size() <= config.maxLeafSize;
                           if (spatial.axis >= 0 && spatial.cost < object.cost) {
+                            if (leafAllowed && leafCost(refs.size(), config) <= spatial.cost) return false;
                             applySpatialSplit(tris, spatial, refs, left, right);
-                            const size_t total = left.size() + right.size();
-                            if (left.size() < refs.size() && right.size() < refs.size() &&
-                                total - refs.size() <= budget) {
-                              budget -= total - refs.size();
+                            const size_t added = left.size() + right.size() - refs.size();
+                            if (!left.empty() && !right.empty() && added <= budget) {
+                              budget -= added;
                               return true;
                             }
-                            left.clear(), right.clear();  // no progress or over budget: split by objects
+                            left.clear(), right.clear();  // all on one side, or over budget: split by objects
                           }
+                          if (leafAllowed && leafCost(refs.size(), config) <= object.cost) return false;
                           if (object.valid()) applyObjectSplit(object, refs, config, left, right);
                           else bvhMedianSplit(refs, left, right);
                           return true;
