@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tbb/parallel_invoke.h>
+
 namespace passtrace {
 namespace {
 
@@ -65,13 +67,16 @@ void bvhMedianSplit(std::vector<BvhBuildRef>& refs, std::vector<BvhBuildRef>& le
   right.assign(mid, refs.end());
 }
 
-BinaryBvh buildBinaryBvh(std::span<const Triangle> tris, const BvhStackConfig& config, const BvhSplitter& split) {
+namespace {
+
+// The subtree over refs whose root is at level `depth`, with the explicit
+// work stack; depth and bounds as the whole tree's would count them.
+BinaryBvh buildSequential(std::vector<BvhBuildRef> refs, uint32_t depth, const BvhStackConfig& config,
+                          const BvhSplitter& split) {
   BinaryBvh bvh;
-  std::vector<BvhBuildRef> all = bvhBuildRefs(tris);
-  if (all.empty()) return bvh;
-  bvh.bounds = boxOf(all);
+  bvh.bounds = boxOf(refs);
   std::vector<Work> stack;
-  stack.push_back({std::move(all), 1, kNoHit, 0});
+  stack.push_back({std::move(refs), depth, kNoHit, 0});
   while (!stack.empty()) {
     Work work = std::move(stack.back());
     stack.pop_back();
@@ -103,6 +108,59 @@ BinaryBvh buildBinaryBvh(std::span<const Triangle> tris, const BvhStackConfig& c
     stack.push_back({std::move(left), work.depth + 1, index, 0});  // left first: depth-first order
   }
   return bvh;
+}
+
+// Hangs `sub` (a subtree's own arrays) under slot `slot` of out's node 0.
+void attach(BinaryBvh& out, const BinaryBvh& sub, int slot) {
+  const auto refOffset = uint32_t(out.references.size());
+  out.references.insert(out.references.end(), sub.references.begin(), sub.references.end());
+  out.leaves += sub.leaves;
+  out.depth = std::max(out.depth, sub.depth);
+  if (sub.nodes.size() == 1 && !sub.nodes[0].child[1].present) {  // a lone leaf: link it directly
+    BvhChild leaf = sub.nodes[0].child[0];
+    leaf.index += refOffset;
+    out.nodes[0].child[slot] = leaf;
+    return;
+  }
+  const auto nodeOffset = uint32_t(out.nodes.size());
+  for (BvhStackNode node : sub.nodes) {
+    for (BvhChild& c : node.child)
+      if (c.present) c.index += c.isLeaf() ? refOffset : nodeOffset;
+    out.nodes.push_back(node);
+  }
+  out.nodes[0].child[slot] = BvhChild{sub.bounds, nodeOffset, 0};
+}
+
+// Large nodes split here and their two subtrees built on all cores; the
+// result depends only on the splits, not on the threads.
+BinaryBvh buildParallel(std::vector<BvhBuildRef> refs, uint32_t depth, const BvhStackConfig& config,
+                        const BvhSplitter& split) {
+  constexpr size_t kGrain = 16384;  // below this a subtree is built by one thread
+  if (refs.size() < kGrain || depth >= config.maxDepth) return buildSequential(std::move(refs), depth, config, split);
+  const Aabb box = boxOf(refs);
+  std::vector<BvhBuildRef> left, right;
+  if (!split(refs, box, depth, left, right)) return buildSequential(std::move(refs), depth, config, split);
+  if (left.empty() || right.empty()) bvhMedianSplit(refs, left, right);
+  refs = {};
+  BinaryBvh below[2];
+  tbb::parallel_invoke([&] { below[0] = buildParallel(std::move(left), depth + 1, config, split); },
+                       [&] { below[1] = buildParallel(std::move(right), depth + 1, config, split); });
+  BinaryBvh out;
+  out.bounds = box;
+  out.nodes.emplace_back();
+  attach(out, below[0], 0);
+  attach(out, below[1], 1);
+  return out;
+}
+
+}  // namespace
+
+BinaryBvh buildBinaryBvh(std::span<const Triangle> tris, const BvhStackConfig& config, const BvhSplitter& split,
+                         bool threadSafeSplitter) {
+  std::vector<BvhBuildRef> all = bvhBuildRefs(tris);
+  if (all.empty()) return {};
+  return threadSafeSplitter ? buildParallel(std::move(all), 1, config, split)
+                            : buildSequential(std::move(all), 1, config, split);
 }
 
 }  // namespace passtrace

@@ -29,8 +29,11 @@ using BvhSplitter = std::function<bool(std::vector<BvhBuildRef>& refs, const Aab
 std::vector<BvhBuildRef> bvhBuildRefs(std::span<const Triangle> tris);
 
 // Builds with `split`; a splitter that leaves a half empty falls back to the
-// median split.
-BinaryBvh buildBinaryBvh(std::span<const Triangle> tris, const BvhStackConfig& config, const BvhSplitter& split);
+// median split. A threadSafeSplitter (one without state) is called from
+// several threads: large subtrees are built in parallel (oneTBB), with the
+// same tree as one thread would make.
+BinaryBvh buildBinaryBvh(std::span<const Triangle> tris, const BvhStackConfig& config, const BvhSplitter& split,
+                         bool threadSafeSplitter = false);
 
 // The centroid box of refs' boxes.
 Aabb bvhCentroidBox(std::span<const BvhBuildRef> refs);

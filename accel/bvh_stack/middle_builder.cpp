@@ -14,7 +14,8 @@ BinaryBvh buildMiddleCut(std::span<const Triangle> tris, const BvhStackConfig& c
                           const float middle = centroids.center()[axis];
                           for (const BvhBuildRef& r : refs) (r.box.center()[axis] < middle ? left : right).push_back(r);
                           return true;  // an empty side: the driver's median split
-                        });
+                        },
+                        /*threadSafeSplitter=*/true);
 }
 
 }  // namespace passtrace

@@ -19,7 +19,8 @@ BinaryBvh buildBinnedSah(std::span<const Triangle> tris, const BvhStackConfig& c
                             return false;
                           applyObjectSplit(split, refs, config, left, right);
                           return true;
-                        });
+                        },
+                        /*threadSafeSplitter=*/true);
 }
 
 }  // namespace passtrace
