@@ -13,6 +13,7 @@
 #include <string>
 
 #include "accel/bvh/kay_kajiya_builder.h"
+#include "accel/bvh_stack/bvh_builder_kind.h"
 #include "accel/geometry/geometry.h"
 #include "accel/geometry/triangle_test.h"
 #include "accel/kd/kd_build_options.h"
@@ -53,6 +54,7 @@ struct AccelBuildConfig {
   int dacrtPLimit = 16;     // --dacrt-plimit: ... or at this many triangles or fewer
   bool dacrtCones = false;  // --dacrt-cones: conic packets of 8x8 primary rays (and shadow rays)
   bool dacrtMedianSplit = false;  // --dacrt-split median: always the spatial median (the seed's baseline)
+  BvhBuilderKind bvhBuilder = BvhBuilderKind::Sah;  // --bvh-builder: the stack BVH's builder
 };
 
 // One generation of rays handed to a batch tracer at once (the CPU renderer

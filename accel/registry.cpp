@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "accel/bvh/bvh_structures.h"
+#include "accel/bvh_stack/bvh_stack_structure.h"
 #include "accel/dacrt/dacrt_structure.h"
 #include "accel/grid/grid_structures.h"
 #include "accel/kd/kd_structures.h"
@@ -140,6 +141,13 @@ std::vector<Structure> makeRows() {
        .stream = makeKdStream<KdStreamVariant::Compact>,
        .mirror = makeKdStreamMirror<KdStreamVariant::Compact>,
        .memory = {620, 598}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination}},
+      // Seed 002 (Aila & Laine 2009); the CPU row runs the kernel's algorithm.
+      {.name = "bvh-stack", .family = "bvh_stack",
+       .description = "binary BVH (--bvh-builder sah, sbvh or middle), two child boxes per node, stack traversal "
+                      "nearer child first; on the CPU the kernel's algorithm",
+       .renderers = {Cpu, Gpu}, .number = std::nullopt, .numberedOn = {},
+       .cpu = makeBvhStackCpu, .stream = makeBvhStackStream, .mirror = makeBvhStackCpu,
+       .memory = {144, 224}, .reads = {P::BvhBuilder}},  // measured with the default sah build
   };
 #if PASSTRACE_HAVE_EMBREE
   rows.push_back({.name = "embree", .family = "embree",
@@ -194,6 +202,7 @@ std::string_view buildParamFlag(BuildParam param) {
     case P::DacrtPLimit: return "--dacrt-plimit";
     case P::DacrtCones: return "--dacrt-cones";
     case P::DacrtSplit: return "--dacrt-split";
+    case P::BvhBuilder: return "--bvh-builder";
   }
   return "?";
 }
@@ -225,6 +234,7 @@ std::string buildParamDefault(BuildParam param) {
     case P::DacrtPLimit: return number(cpu.dacrtPLimit);
     case P::DacrtCones: return cpu.dacrtCones ? "on" : "off";
     case P::DacrtSplit: return cpu.dacrtMedianSplit ? "median" : "mean";
+    case P::BvhBuilder: return std::string(kBvhBuilderNames[int(cpu.bvhBuilder)]);
   }
   return "?";
 }

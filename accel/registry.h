@@ -63,6 +63,7 @@ enum class BuildParam {
   DacrtPLimit,     // --dacrt-plimit: DACRT's triangle count for naive tracing (dacrtPLimit)
   DacrtCones,      // --dacrt-cones: DACRT's conic packets (dacrtCones)
   DacrtSplit,      // --dacrt-split: DACRT's split position, mean or median (dacrtMedianSplit)
+  BvhBuilder,      // --bvh-builder: the stack BVH's sah, sbvh or middle builder (bvhBuilder)
 };
 // The flag a parameter is given with, as --help shows it ("-g/--grid-multiplier").
 std::string_view buildParamFlag(BuildParam param);
@@ -75,7 +76,7 @@ inline constexpr BuildParam kBuildParams[] = {
     BuildParam::LoopLimit,     BuildParam::PageTexels, BuildParam::TriangleTest,
     BuildParam::KdStackSize,   BuildParam::KdBuilder,  BuildParam::KdTermination,
     BuildParam::Dynamic,       BuildParam::DacrtRLimit, BuildParam::DacrtPLimit, BuildParam::DacrtCones,
-    BuildParam::DacrtSplit};
+    BuildParam::DacrtSplit, BuildParam::BvhBuilder};
 
 // Peak resident bytes per triangle of a run, measured (apps' memory check):
 // the slope between 1 M and 2 M triangles of the procedural "spheres" scene,

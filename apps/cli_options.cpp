@@ -124,6 +124,10 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
                  "dacrt: split position, mean (of sampled triangle midpoints above 10,000 triangles, the seed's) "
                  "or median (always the middle of the cell)")
       ->check(CLI::IsMember({"mean", "median"}))->capture_default_str();
+  app.add_option("--bvh-builder", o.bvhBuilder,
+                 "bvh-stack: binned SAH (sah), split BVH with spatial splits (sbvh, Stich et al. 2009) or the "
+                 "middle of the centroid box's largest axis (middle)")
+      ->check(CLI::IsMember({"sah", "sbvh", "middle"}))->capture_default_str();
   app.add_option("--heatmap", o.heatmap, "write per-pixel traversal steps (all bounces) as a heat map image");
   app.add_flag("--stats", o.stats, "print the structure's memory and the per-ray step statistics");
   app.add_flag("-q,--quiet", o.quiet, "print nothing but errors");
@@ -178,7 +182,8 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
   for (const char* flag : {"--swap-children", "--gs-tries", "--grid-multiplier", "--kd-min-elements", "--kd-max-depth",
                            "--grid-kernels", "--loop-limit", "--page-texels", "--triangle-test", "--stack-size",
                            "--kd-builder", "--kd-termination", "--dynamic",
-                           "--dacrt-rlimit", "--dacrt-plimit", "--dacrt-cones", "--dacrt-split"})
+                           "--dacrt-rlimit", "--dacrt-plimit", "--dacrt-cones", "--dacrt-split",
+                           "--bvh-builder"})
     if (app.count(flag)) o.givenFlags.emplace_back(flag);
   return 0;
 }

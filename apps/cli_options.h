@@ -56,6 +56,7 @@ struct Options {
   int dacrtPLimit = 16;             // --dacrt-plimit: ... or this many triangles or fewer
   bool dacrtCones = false;          // --dacrt-cones: DACRT's conic packets
   std::string dacrtSplit = "mean";  // --dacrt-split: mean (the seed's) or median
+  std::string bvhBuilder = "sah";   // --bvh-builder: the stack BVH's sah, sbvh or middle builder
   std::string heatmap;              // --heatmap: per-pixel traversal steps as an image
   std::string exportPath;           // --export: write the scene's triangles (.obj/.gltf/.glb) and exit
   int frames = 0;                   // --frames N: render a sequence over the animation (0: one frame at --time)

@@ -31,6 +31,7 @@ RunSettings toRunSettings(const Options& o) {
   build.kdTermination = *kdTerminationByName(o.kdTermination);
   build.dacrtRLimit = o.dacrtRLimit, build.dacrtPLimit = o.dacrtPLimit, build.dacrtCones = o.dacrtCones;
   build.dacrtMedianSplit = o.dacrtSplit == "median";
+  build.bvhBuilder = *bvhBuilderByName(o.bvhBuilder);  // the parser accepts only valid names
   s.gpu.loopLimit = o.loopLimit;
   s.gpu.gridKernels = o.gridKernels == "split" ? GridKernels::Split : GridKernels::Merged;
   s.gpu.maxPageTexels = o.pageTexels;
@@ -55,7 +56,8 @@ RunSettings toRunSettings(const Options& o) {
       {"--kd-termination", BuildParam::KdTermination},
       {"--dynamic", BuildParam::Dynamic},
       {"--dacrt-rlimit", BuildParam::DacrtRLimit},    {"--dacrt-plimit", BuildParam::DacrtPLimit},
-      {"--dacrt-cones", BuildParam::DacrtCones},      {"--dacrt-split", BuildParam::DacrtSplit}};
+      {"--dacrt-cones", BuildParam::DacrtCones},      {"--dacrt-split", BuildParam::DacrtSplit},
+      {"--bvh-builder", BuildParam::BvhBuilder}};
   for (const std::string& flag : o.givenFlags) s.givenParams.push_back(kFlags.at(flag));
   if (o.frames == 0 && std::count(s.givenParams.begin(), s.givenParams.end(), BuildParam::Dynamic))
     throw std::runtime_error("--dynamic chooses how a --frames sequence updates its structure: it needs --frames");

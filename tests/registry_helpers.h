@@ -45,16 +45,20 @@ inline std::vector<std::pair<int, std::string>> everyStructureRun() {
         runs.emplace_back(int(r), std::string(s.name) + " --dacrt-rlimit 1 --dacrt-plimit 1");
         runs.emplace_back(int(r), std::string(s.name) + " --dacrt-cones --dacrt-rlimit 1 --dacrt-plimit 1");
       }
+      // The stack BVH's non-default builders (sah is the default run above).
+      if (std::find(reads.begin(), reads.end(), BuildParam::BvhBuilder) != reads.end())
+        for (const char* b : {"sbvh", "middle"}) runs.emplace_back(int(r), std::string(s.name) + " --bvh-builder " + b);
     }
   return runs;
 }
 
 // The loop limits (-l) a command-line test runs `run` (an everyStructureRun
-// entry) with: 3 and 64 for the GPU kd rows, whose state (stacks included)
+// entry) with: 3 and 64 for the GPU kd and stack-BVH rows, whose state (stacks included)
 // must survive a pass ending anywhere; else only the default (empty flag).
 inline std::vector<std::string> loopLimitFlags(const std::pair<int, std::string>& run) {
   const Structure* s = findStructure(run.second.substr(0, run.second.find(' ')));
-  if (run.first == int(RendererId::Gpu) && s && s->family == "kd") return {" -l 3", " -l 64"};
+  if (run.first == int(RendererId::Gpu) && s && (s->family == "kd" || s->family == "bvh_stack"))
+    return {" -l 3", " -l 64"};
   return {""};
 }
 

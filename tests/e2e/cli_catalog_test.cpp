@@ -109,7 +109,8 @@ const std::vector<std::pair<BuildParam, std::string>> kParamArgs = {
     {BuildParam::LoopLimit, "-l 10"},          {BuildParam::PageTexels, "--page-texels 0"},
     {BuildParam::TriangleTest, "--triangle-test watertight"},
     {BuildParam::KdStackSize, "--stack-size 2"},
-    {BuildParam::KdBuilder, "--kd-builder binned"},   {BuildParam::KdTermination, "--kd-termination papay"}};
+    {BuildParam::KdBuilder, "--kd-builder binned"},   {BuildParam::KdTermination, "--kd-termination papay"},
+    {BuildParam::BvhBuilder, "--bvh-builder sbvh"}};
 
 // For each renderer of a row: the flags the row reads give no warning; the
 // first flag it does not read gives exactly one, naming the flag.

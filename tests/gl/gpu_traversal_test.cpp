@@ -20,7 +20,8 @@ namespace {
 // it reads, under both triangle tests; and, under Moller-Trumbore only (the
 // variants change the tree or the stack, not the triangle test), stack sizes
 // 1 and 8 where it reads --stack-size and the binned kd build with thesis and
-// papay termination where it reads --kd-builder.
+// papay termination where it reads --kd-builder, the sbvh and middle builds
+// where it reads --bvh-builder.
 struct GpuCase {
   const Structure* structure;
   GridKernels gridKernels;
@@ -29,6 +30,7 @@ struct GpuCase {
   int stackSize = AccelBuildConfig{}.kdStackSize;
   KdBuilderKind kdBuilder = KdBuilderKind::Exact;
   KdTermination kdTermination = KdTermination::Thesis;
+  BvhBuilderKind bvhBuilder = BvhBuilderKind::Sah;
 };
 
 const std::vector<GpuCase>& gpuCases() {
@@ -54,6 +56,12 @@ const std::vector<GpuCase>& gpuCases() {
           cases.push_back({&s, GridKernels::Merged, name + "_binned_papay", test, k, KdBuilderKind::Binned,
                            KdTermination::Papay});
         }
+        if (std::find(reads.begin(), reads.end(), BuildParam::BvhBuilder) != reads.end()) {
+          const int k = AccelBuildConfig{}.kdStackSize;
+          for (const BvhBuilderKind b : {BvhBuilderKind::Sbvh, BvhBuilderKind::Middle})
+            cases.push_back({&s, GridKernels::Merged, name + "_" + std::string(kBvhBuilderNames[int(b)]), test, k,
+                             KdBuilderKind::Exact, KdTermination::Thesis, b});
+        }
       }
     return cases;
   }();
@@ -75,6 +83,7 @@ TEST_P(GpuTraversalAgreement, SameHitsAsBruteForceAndSameStepsAsTheCpu) {
   build.kdStackSize = c.stackSize;
   build.kdBuilder = c.kdBuilder;
   build.kdTermination = c.kdTermination;
+  build.bvhBuilder = c.bvhBuilder;
   // The CPU running the same algorithm over the same data.
   const auto cpu = makeMirrorStructure(*c.structure, scene.triangles, build);
 

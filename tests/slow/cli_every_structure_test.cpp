@@ -1,7 +1,8 @@
 // Every structure of the registry on every ray tracer through the command
 // line: the hit buffers equal brute force on the Cornell box and the bunny,
 // and on the BART scenes when they are found; the short stacks with 1, 4 and 8
-// entries, the GPU kd rows at loop limits 3 and 64.
+// entries, bvh-stack with each --bvh-builder, the GPU kd and stack-BVH rows at
+// loop limits 3 and 64.
 
 #include <filesystem>
 #include <string>

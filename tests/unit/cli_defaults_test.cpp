@@ -45,6 +45,7 @@ TEST(CliDefaults, EqualTheRegistrysBuildParameterDefaults) {
   EXPECT_EQ(number(o.dacrtPLimit), value(BuildParam::DacrtPLimit));
   EXPECT_EQ(o.dacrtCones ? "on" : "off", value(BuildParam::DacrtCones));
   EXPECT_EQ(o.dacrtSplit, value(BuildParam::DacrtSplit));
+  EXPECT_EQ(o.bvhBuilder, value(BuildParam::BvhBuilder));
 }
 
 TEST(CliDefaults, EveryBuildParameterHasAFlagAndADefault) {
