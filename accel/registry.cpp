@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "accel/bih/bih_structures.h"
 #include "accel/bvh/bvh_structures.h"
 #include "accel/dacrt/dacrt_structure.h"
 #include "accel/grid/grid_structures.h"
@@ -123,6 +124,13 @@ std::vector<Structure> makeRows() {
        .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeDacrtCpu,
        .memory = {48, 0}, .reads = {P::DacrtRLimit, P::DacrtPLimit, P::DacrtCones, P::DacrtSplit}},
+      // Wächter & Keller 2006; the CPU runs the kernel's algorithm (bih_structures.h). Memory not measured yet.
+      {.name = "bih", .family = "bih",
+       .description = "bounding interval hierarchy (two clip planes per node, global-box splits), stack traversal; "
+                      "on the CPU the kernel's algorithm",
+       .renderers = {Cpu, Gpu}, .number = std::nullopt, .numberedOn = {},
+       .cpu = makeBihCpu, .stream = makeBihStream, .mirror = makeBihCpu,
+       .memory = {0, 0}, .reads = {}},
   };
 #if PASSTRACE_HAVE_EMBREE
   rows.push_back({.name = "embree", .family = "embree",
