@@ -10,8 +10,9 @@ namespace {
 
 using Cursor = BihStreamCursor;
 
-float widenUp(float t) { return t + std::fabs(t) * kBihSlack; }
-float widenDown(float t) { return t - std::fabs(t) * kBihSlack; }
+// One rounded product each, exact for 0 and infinities (no inf - inf).
+float widenUp(float t) { return t * (t > 0.0f ? 1.0f + kBihSlack : 1.0f - kBihSlack); }
+float widenDown(float t) { return t * (t > 0.0f ? 1.0f - kBihSlack : 1.0f + kBihSlack); }
 
 // The leaf or the culled node is finished: the latest stacked child, or the end.
 void popOrDone(Cursor& c) {

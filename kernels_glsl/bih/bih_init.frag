@@ -4,6 +4,7 @@
 #include "texel_address.glsl"
 #include "intersect.glsl"
 #include "bih/bih_ray_record.glsl"
+#include "bih/bih_slack.glsl"
 
 layout(early_fragment_tests) in;
 
@@ -15,17 +16,13 @@ uniform vec3 uSceneMax;
 layout(location = 0) out vec4 outState;  // packed node, steps, tests, hasWork
 layout(location = 1) out vec4 outAux;    // mode, tMin, tMax, 0
 
-const float BIH_SLACK = 9.5367431640625e-07;  // 2^-20, kBihSlack
-
 void main() {
   vec4 origin = readElement(uOrigin);
   vec4 direction = readElement(uDirection);
   float tNear, tFar;
   clipToBox(origin.xyz, safeInverse(direction.xyz), uSceneMin, uSceneMax, tNear, tFar);
-  precise float lo = tNear - abs(tNear) * BIH_SLACK;
-  precise float hi = tFar + abs(tFar) * BIH_SLACK;
-  float tMin = max(lo, 0.0);
-  float tMax = min(hi, direction.w);
+  float tMin = max(widenDown(tNear), 0.0);
+  float tMax = min(widenUp(tFar), direction.w);
   // An empty scene's box (min > max, infinite) would clip to everything.
   bool sceneEmpty = any(greaterThan(uSceneMin, uSceneMax));
   bool hasWork = tMin <= tMax && !sceneEmpty;

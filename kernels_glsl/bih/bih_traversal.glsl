@@ -6,9 +6,7 @@
 // interval [tMin, tMax] at that node, and the stack in bih_ray_record.glsl.
 
 const float MODE_DOWN = -1.0;
-const float BIH_SLACK = 9.5367431640625e-07;  // 2^-20, kBihSlack
-const float PARALLEL_INVERSE = 1e19;          // kParallelInverse
-
+const float PARALLEL_INVERSE = 1e19;  // kParallelInverse
 struct BihRay {
   vec3 origin, direction, invDir;
   bool anyHit;
@@ -84,15 +82,11 @@ void bihStep(inout BihRay ray, ConstStream nodes, ConstStream lists, ConstStream
     precise float tLeft = (node.y - o) * inv;
     precise float tRight = (node.z - o) * inv;
     if (inv > 0.0) {
-      precise float up = tLeft + abs(tLeft) * BIH_SLACK;
-      precise float down = tRight - abs(tRight) * BIH_SLACK;
-      hi.x = min(hi.x, up);
-      lo.y = max(lo.y, down);
+      hi.x = min(hi.x, widenUp(tLeft));
+      lo.y = max(lo.y, widenDown(tRight));
     } else {
-      precise float down = tLeft - abs(tLeft) * BIH_SLACK;
-      precise float up = tRight + abs(tRight) * BIH_SLACK;
-      lo.x = max(lo.x, down);
-      hi.y = min(hi.y, up);
+      lo.x = max(lo.x, widenDown(tLeft));
+      hi.y = min(hi.y, widenUp(tRight));
     }
   }
   bool leftNear = inv > 0.0;

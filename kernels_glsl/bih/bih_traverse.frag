@@ -5,6 +5,7 @@
 #include "ray_kinds.glsl"
 #include "reference_lists.glsl"
 #include "bih/bih_ray_record.glsl"
+#include "bih/bih_slack.glsl"
 #include "bih/bih_traversal.glsl"
 
 layout(early_fragment_tests) in;
