@@ -1,6 +1,7 @@
 #include "accel/octree/octree_revelles.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace passtrace {
 
@@ -14,11 +15,16 @@ RevellesRay revellesStart(const Aabb& root, const glm::vec3& origin, const glm::
   RevellesRay r;
   glm::vec3 o = origin, d = direction;
   for (int k = 0; k < 3; ++k) {
-    if (d[k] < 0.0f) {
-      o[k] = (root.min[k] + root.max[k]) - o[k];
-      d[k] = -d[k];
+    // A ray parallel to an axis (as safeInverse sees it) is mirrored when it
+    // lies in the upper half, so it never sits on the root's exit face: one
+    // lying in the root's max face would get t1 = 0 and leave at once.
+    const bool parallel = std::fabs(d[k]) < 1e-20f;
+    const float twice = root.min[k] + root.max[k];
+    if (parallel ? o[k] + o[k] > twice : d[k] < 0.0f) {
+      o[k] = twice - o[k];
       r.a |= 1 << k;
     }
+    d[k] = std::fabs(d[k]);
   }
   const glm::vec3 inv = safeInverse(d);
   r.t0 = glm::clamp((root.min - o) * inv, glm::vec3(-kRevellesLimit), glm::vec3(kRevellesLimit));

@@ -3,7 +3,7 @@
 // Traversal": a node's slab parameters t0 (entry) and t1 (exit) per axis; its
 // children's come from tm = ½(t0 + t1) by selection alone (only adds and
 // halvings). The ray is mirrored to positive directions around the root's
-// center; the a-mask (bit k: direction k negative) maps a mirrored octant to
+// center (and parallel rays in the upper half); the a-mask (bit k: mirrored) maps a mirrored octant to
 // the stored one (octant ^ a). Octant bit k: upper half along axis k, as
 // buildOctree numbers them. kernels_glsl/octree/octree_revelles.glsl computes
 // the same, operation for operation.

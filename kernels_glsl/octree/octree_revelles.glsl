@@ -10,11 +10,15 @@ void revellesStart(vec3 rootMin, vec3 rootMax, vec3 origin, vec3 direction, out 
   precise vec3 o = origin;
   vec3 d = direction;
   for (int k = 0; k < 3; ++k) {
-    if (d[k] < 0.0) {
-      o[k] = (rootMin[k] + rootMax[k]) - o[k];
-      d[k] = -d[k];
+    // Parallel rays in the upper half are mirrored too (never on the exit face).
+    bool parallel = abs(d[k]) < 1e-20;
+    precise float twice = rootMin[k] + rootMax[k];
+    precise float doubled = o[k] + o[k];
+    if (parallel ? doubled > twice : d[k] < 0.0) {
+      o[k] = twice - o[k];
       a |= 1 << k;
     }
+    d[k] = abs(d[k]);
   }
   vec3 inv = safeInverse(d);
   precise vec3 lo = (rootMin - o) * inv;
