@@ -51,10 +51,12 @@ inline std::vector<std::pair<int, std::string>> everyStructureRun() {
 
 // The loop limits (-l) a command-line test runs `run` (an everyStructureRun
 // entry) with: 3 and 64 for the GPU kd rows, whose state (stacks included)
-// must survive a pass ending anywhere; else only the default (empty flag).
+// must survive a pass ending anywhere, and for the BIH and octree rows, whose
+// stacks live in storage buffers too; else only the default (empty flag).
 inline std::vector<std::string> loopLimitFlags(const std::pair<int, std::string>& run) {
   const Structure* s = findStructure(run.second.substr(0, run.second.find(' ')));
-  if (run.first == int(RendererId::Gpu) && s && s->family == "kd") return {" -l 3", " -l 64"};
+  if (run.first == int(RendererId::Gpu) && s && (s->family == "kd" || s->family == "bih" || s->family == "octree"))
+    return {" -l 3", " -l 64"};
   return {""};
 }
 
