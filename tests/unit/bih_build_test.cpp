@@ -58,7 +58,8 @@ void expectValid(const Bih& bih, std::span<const Triangle> tris, const BihConfig
     if (n.isLeaf() && int(n.refCount) > config.leafSize) {
       // Only a depth limit or an unsplittable cell makes a large leaf.
       std::vector<glm::vec3> centroids;
-      for (uint32_t r = n.firstRef; r < n.firstRef + n.refCount; ++r) centroids.push_back(tris[bih.references[r]].centroid());
+      for (uint32_t r = n.firstRef; r < n.firstRef + n.refCount; ++r)
+        centroids.push_back(tris[bih.references[r]].centroid());
       const bool oneCentroid = std::all_of(centroids.begin(), centroids.end(),
                                            [&](const glm::vec3& c) { return c == centroids[0]; });
       EXPECT_TRUE(oneCentroid || int(bih.depth) == config.maxDepth) << n.refCount << " triangles in a leaf";
