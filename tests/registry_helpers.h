@@ -53,11 +53,10 @@ inline std::vector<std::pair<int, std::string>> everyStructureRun() {
 }
 
 // The loop limits (-l) a command-line test runs `run` (an everyStructureRun
-// entry) with: 3 and 64 for the GPU kd and stack-BVH rows, whose state (stacks included)
-// must survive a pass ending anywhere; else only the default (empty flag).
+// entry) with: 3 and 64 for every GPU row, whose state (stacks included) must
+// survive a pass ending anywhere; on the CPU only the default (empty flag).
 inline std::vector<std::string> loopLimitFlags(const std::pair<int, std::string>& run) {
-  const Structure* s = findStructure(run.second.substr(0, run.second.find(' ')));
-  if (run.first == int(RendererId::Gpu) && s && (s->family == "kd" || s->family == "bvh_stack"))
+  if (run.first == int(RendererId::Gpu))
     return {" -l 3", " -l 64"};
   return {""};
 }

@@ -71,7 +71,7 @@ TEST(Octree, FloatsPerTriangleAndLimits) {
                    (8.0 * double(tree.nodes.size()) + double(tree.references.size())) / 4000.0);
   const AccelStats s = testing_registry::cpuStructure(7, tris)->stats();
   const Octree byDefault = buildOctree(tris);
-  EXPECT_EQ(s.name, "octree");
+  EXPECT_EQ(s.name, "octree-descent");
   EXPECT_EQ(s.nodes, byDefault.nodes.size());
   EXPECT_EQ(s.leaves, byDefault.leafCount());
   EXPECT_EQ(s.references, byDefault.references.size());

@@ -32,7 +32,7 @@ TEST(Registry, NamesAreUniqueAndEachRowHasItsFactories) {
 // Thesis Table 4: the CPU and GPU columns number different structures.
 TEST(Registry, ThesisNumbersPerRendererColumn) {
   const char* cpu[] = {"kk-bvh", "gs-bvh", "kd-tree", "kd-pbrt", "grid", "kk-bvh-recursive", "gs-bvh-recursive",
-                       "octree"};
+                       "octree-descent"};
   const char* gpu[] = {"kk-bvh", "gs-bvh", "kd-restart", "kd-backtrack", "grid"};
   for (int i = 0; i < 8; ++i) {
     EXPECT_EQ(resolveStructure(std::to_string(i), RendererId::Cpu).name, cpu[i]);
@@ -71,7 +71,7 @@ TEST(Registry, UnknownOrMisplacedNamesGiveOneLineListingTheValidOnes) {
 
 TEST(Registry, BuildingForARendererWithoutAnImplementationThrows) {
   const auto tris = testmesh::singleTriangle();
-  EXPECT_THROW(makeStreamStructure(*findStructure("octree"), tris), std::invalid_argument);
+  EXPECT_THROW(makeStreamStructure(*findStructure("octree-descent"), tris), std::invalid_argument);
   EXPECT_THROW(makeMirrorStructure(*findStructure("kd-tree"), tris), std::invalid_argument);
   GpuTraversalConfig zeroLoop;
   zeroLoop.loopLimit = 0;

@@ -1,0 +1,55 @@
+// Octree traversal and intersection (Revelles et al. 2000): up to uLoopLimit
+// steps of octree_traversal.glsl per pass; the frames live in
+// octree_ray_record.glsl's buffer.
+#include "texel_address.glsl"
+#include "intersect.glsl"
+#include "ray_kinds.glsl"
+#include "reference_lists.glsl"
+#include "octree/octree_ray_record.glsl"
+#include "octree/octree_revelles.glsl"
+#include "octree/octree_traversal.glsl"
+
+layout(early_fragment_tests) in;
+
+uniform sampler2D uOrigin;
+uniform sampler2D uDirection;
+uniform sampler2D uState;
+uniform sampler2D uHit;
+uniform sampler2D uAux;
+uniform ConstStream uNodes;
+uniform ConstStream uLists;
+uniform ConstStream uTriangles;
+uniform vec3 uRootMin;
+uniform vec3 uRootMax;
+uniform int uLoopLimit;
+
+layout(location = 0) out vec4 outState;
+layout(location = 1) out vec4 outHit;
+layout(location = 2) out vec4 outAux;
+
+void main() {
+  vec4 origin = readElement(uOrigin);
+  vec4 direction = readElement(uDirection);
+  vec4 state = readElement(uState);
+  vec4 aux = readElement(uAux);
+  OctreeRay ray;
+  ray.origin = origin.xyz;
+  ray.direction = direction.xyz;
+  ray.anyHit = origin.w == RAY_SHADOW;
+  revellesStart(uRootMin, uRootMax, ray.origin, ray.direction, ray.a, ray.rootT0, ray.rootT1);
+  ray.node = unpackIndex(state.x);
+  ray.steps = state.y;
+  ray.tests = state.z;
+  ray.mode = aux.x;
+  ray.leafExit = aux.y;
+  ray.hit = readElement(uHit);
+  ray.done = false;
+  ray.record = octreeRecordBase();
+  ray.count = unpackIndex(octreeRecords[ray.record]);
+  for (int i = 0; i < uLoopLimit && !ray.done; ++i)
+    octreeStep(ray, uNodes, uLists, uTriangles);
+  octreeRecords[ray.record] = packIndex(ray.count);
+  outState = vec4(packIndex(ray.node), ray.steps, ray.tests, ray.done ? 0.0 : 1.0);
+  outHit = ray.hit;
+  outAux = vec4(ray.mode, ray.leafExit, 0.0, 0.0);
+}
