@@ -9,6 +9,7 @@
 #include "accel/grid/grid_structures.h"
 #include "accel/kd/kd_structures.h"
 #include "accel/octree/octree_structure.h"
+#include "accel/wide_bvh/wide_bvh_structure.h"
 #if PASSTRACE_HAVE_EMBREE
 #include "accel/embree/embree_accelerator.h"
 #endif
@@ -123,6 +124,11 @@ std::vector<Structure> makeRows() {
        .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeDacrtCpu,
        .memory = {48, 0}, .reads = {P::DacrtRLimit, P::DacrtPLimit, P::DacrtCones, P::DacrtSplit}},
+      {.name = "bvh8", .family = "wide_bvh",
+       .description = "8-wide BVH collapsed from a binned SAH BVH (built on all cores), AVX2 node and triangle tests",
+       .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
+       .cpu = makeBvh8Cpu,
+       .memory = {0, 0}, .reads = {}},
   };
 #if PASSTRACE_HAVE_EMBREE
   rows.push_back({.name = "embree", .family = "embree",
