@@ -28,7 +28,11 @@ struct BinaryBvh {
 };
 
 struct SahBuildConfig {
-  int bins = 32;                // binned builder: bins per axis (all three axes are binned)
+  int bins = 32;                // binned builder: bins per axis, 2-32 (all three axes are binned)
+  // Nodes of at most this many triangles are leaves without a split search:
+  // the wide BVH tests a pack of 4 at the cost of one, and the collapse merges
+  // such subtrees into one pack anyway. Both builders apply it.
+  uint32_t leafSize = 4;
   uint32_t maxLeafSize = 8;     // larger nodes are always split (two packs of 4 in the wide BVH)
   float traversalCost = 1.0f;   // K_T, as the kd builders' (kd_sah_cost.h)
   float intersectionCost = 1.5f;  // K_I

@@ -1,5 +1,9 @@
+// The binned SAH builder (Wald, "On fast construction of SAH-based bounding
+// volume hierarchies", 2007): every axis binned at once, each bin keeping its
+// triangles' bounds and their centroids' bounds (so children know their
+// centroid bounds without another pass), split where the SAH is least. Large
+// nodes bin in parallel and their two halves build as parallel tasks.
 #include <algorithm>
-#include <array>
 #include <atomic>
 
 #include <tbb/blocked_range.h>
@@ -11,40 +15,65 @@
 namespace passtrace {
 namespace {
 
-constexpr int kMaxBins = 64;
+constexpr int kMaxBins = 32;
+
+// A box as two 4-float rows (the 4th lane unused), written so the compiler
+// turns extend into two vector min/max instructions; glm's min/max on floats
+// call fmax and were a tenth of the build.
+struct alignas(16) Box4 {
+  float lo[4], hi[4];
+  static Box4 empty() { return {{kInfinity, kInfinity, kInfinity, 0.0f}, {-kInfinity, -kInfinity, -kInfinity, 0.0f}}; }
+  void extend(const Box4& b) {
+    for (int k = 0; k < 4; ++k) lo[k] = b.lo[k] < lo[k] ? b.lo[k] : lo[k];
+    for (int k = 0; k < 4; ++k) hi[k] = b.hi[k] > hi[k] ? b.hi[k] : hi[k];
+  }
+  float area() const {
+    const float x = hi[0] - lo[0], y = hi[1] - lo[1], z = hi[2] - lo[2];
+    return x < 0.0f ? 0.0f : 2.0f * (x * y + y * z + z * x);
+  }
+  Aabb aabb() const { return Aabb{{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}; }
+};
+
+struct Prim {
+  Box4 box;
+  Box4 centroid;  // lo = hi = the box's center
+};
 
 struct Bin {
-  Aabb bounds;    // of the triangles
-  Aabb centroids; // of their centroids: the children's centroid bounds without another pass
-  uint32_t count = 0;
-  void add(const Bin& o) {
-    bounds.extend(o.bounds);
-    centroids.extend(o.centroids);
-    count += o.count;
-  }
+  Box4 bounds, centroids;
+  uint32_t count;
 };
 
 struct Bins {
-  std::array<std::array<Bin, kMaxBins>, 3> axis;
-  void add(const Bins& o, int n) {
+  int n = 0;
+  Bin axis[3][kMaxBins];
+  explicit Bins(int bins) : n(bins) {
+    for (auto& a : axis)
+      for (int b = 0; b < n; ++b) a[b] = Bin{Box4::empty(), Box4::empty(), 0};
+  }
+  void add(const Bins& o) {
     for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < n; ++b) axis[a][b].add(o.axis[a][b]);
+      for (int b = 0; b < n; ++b) {
+        axis[a][b].bounds.extend(o.axis[a][b].bounds);
+        axis[a][b].centroids.extend(o.axis[a][b].centroids);
+        axis[a][b].count += o.axis[a][b].count;
+      }
   }
 };
 
-// Maps a centroid coordinate to its bin; the partition uses the same function
-// so that it agrees with the counts the split was chosen from.
+// Maps centroids to bins; the partition uses the same function so that it
+// agrees with the counts the split was chosen from.
 struct Binner {
-  glm::vec3 origin, scale;
+  float origin[4], scale[4];
   int bins;
-  Binner(const Aabb& cb, int n) : origin(cb.min), bins(n) {
-    const glm::vec3 e = cb.extent();
-    for (int a = 0; a < 3; ++a) scale[a] = e[a] > 0.0f ? float(n) * (1.0f - 1e-6f) / e[a] : 0.0f;
+  Binner(const Box4& cb, int n) : bins(n) {
+    for (int a = 0; a < 4; ++a) {
+      const float e = cb.hi[a] - cb.lo[a];
+      origin[a] = cb.lo[a];
+      scale[a] = a < 3 && e > 0.0f ? float(n) * (1.0f - 1e-6f) / e : 0.0f;
+    }
   }
-  int bin(float c, int a) const {
-    const int b = int((c - origin[a]) * scale[a]);
-    return std::clamp(b, 0, bins - 1);
-  }
+  int bin(const Box4& c, int a) const { return std::clamp(int((c.lo[a] - origin[a]) * scale[a]), 0, bins - 1); }
 };
 
 class Builder {
@@ -52,21 +81,22 @@ public:
   Builder(std::span<const Triangle> tris, const SahBuildConfig& config, BinaryBvh& out)
       : config_(config), out_(out), bins_(std::clamp(config.bins, 2, kMaxBins)) {
     const size_t n = tris.size();
-    bounds_.resize(n);
-    centroids_.resize(n);
+    prims_.resize(n);
     out.prims.resize(n);
     struct Reduce {
-      Aabb b, c;
+      Box4 b = Box4::empty(), c = Box4::empty();
     };
     const Reduce root = tbb::parallel_reduce(
         tbb::blocked_range<size_t>(0, n, 8192), Reduce{},
         [&](const tbb::blocked_range<size_t>& r, Reduce acc) {
           for (size_t i = r.begin(); i != r.end(); ++i) {
-            bounds_[i] = tris[i].bounds();
-            centroids_[i] = bounds_[i].center();
+            const Aabb b = tris[i].bounds();
+            const glm::vec3 c = b.center();
+            prims_[i].box = Box4{{b.min.x, b.min.y, b.min.z, 0.0f}, {b.max.x, b.max.y, b.max.z, 0.0f}};
+            prims_[i].centroid = Box4{{c.x, c.y, c.z, 0.0f}, {c.x, c.y, c.z, 0.0f}};
             out.prims[i] = uint32_t(i);
-            acc.b.extend(bounds_[i]);
-            acc.c.extend(centroids_[i]);
+            acc.b.extend(prims_[i].box);
+            acc.c.extend(prims_[i].centroid);
           }
           return acc;
         },
@@ -77,9 +107,9 @@ public:
         });
     out.nodes.resize(n == 0 ? 0 : 2 * n - 1);
     if (n == 0) return;
-    out.nodes[0].bounds = root.b;
+    out.nodes[0].bounds = root.b.aabb();
     next_ = 1;
-    build(0, 0, uint32_t(n), root.c);
+    build(0, 0, uint32_t(n), root.b, root.c);
     out.nodes.resize(next_.load());
   }
 
@@ -89,121 +119,112 @@ private:
     out_.nodes[node].count = end - begin;
   }
 
-  Bins binRange(uint32_t begin, uint32_t end, const Binner& binner) const {
-    const auto fill = [&](uint32_t b, uint32_t e, Bins& bins) {
+  void binRange(uint32_t begin, uint32_t end, const Binner& binner, Bins& bins) const {
+    const auto fill = [&](uint32_t b, uint32_t e, Bins& into) {
       for (uint32_t i = b; i < e; ++i) {
-        const uint32_t p = out_.prims[i];
+        const Prim& p = prims_[out_.prims[i]];
         for (int a = 0; a < 3; ++a) {
-          Bin& bin = bins.axis[a][binner.bin(centroids_[p][a], a)];
-          bin.bounds.extend(bounds_[p]);
-          bin.centroids.extend(centroids_[p]);
+          Bin& bin = into.axis[a][binner.bin(p.centroid, a)];
+          bin.bounds.extend(p.box);
+          bin.centroids.extend(p.centroid);
           ++bin.count;
         }
       }
     };
-    if (end - begin < 65536) {
-      Bins bins;
-      fill(begin, end, bins);
-      return bins;
-    }
-    return tbb::parallel_reduce(
-        tbb::blocked_range<uint32_t>(begin, end, 16384), Bins{},
+    if (end - begin < 65536) return fill(begin, end, bins);
+    bins = tbb::parallel_reduce(
+        tbb::blocked_range<uint32_t>(begin, end, 16384), Bins(binner.bins),
         [&](const tbb::blocked_range<uint32_t>& r, Bins acc) {
           fill(r.begin(), r.end(), acc);
           return acc;
         },
         [&](Bins a, const Bins& b) {
-          a.add(b, bins_);
+          a.add(b);
           return a;
         });
   }
 
-  void build(uint32_t node, uint32_t begin, uint32_t end, const Aabb& centroidBounds) {
+  void build(uint32_t node, uint32_t begin, uint32_t end, const Box4& bounds, const Box4& centroidBounds) {
     const uint32_t n = end - begin;
-    const Aabb& bounds = out_.nodes[node].bounds;
-    if (n <= 1) return makeLeaf(node, begin, end);
-    const glm::vec3 ce = centroidBounds.extent();
+    if (n <= config_.leafSize) return makeLeaf(node, begin, end);
+    const float ce[3] = {centroidBounds.hi[0] - centroidBounds.lo[0], centroidBounds.hi[1] - centroidBounds.lo[1],
+                         centroidBounds.hi[2] - centroidBounds.lo[2]};
     const float leafCost = config_.intersectionCost * float(n);
     uint32_t mid = 0;
-    Aabb leftBounds, rightBounds, leftCentroids, rightCentroids;
-    if (!(ce.x > 0.0f || ce.y > 0.0f || ce.z > 0.0f)) {
+    Box4 leftBounds = Box4::empty(), rightBounds = Box4::empty();
+    Box4 leftCentroids = Box4::empty(), rightCentroids = Box4::empty();
+    if (!(ce[0] > 0.0f || ce[1] > 0.0f || ce[2] > 0.0f)) {
       // All centroids at one point: no plane separates them; halve the list.
       if (n <= config_.maxLeafSize) return makeLeaf(node, begin, end);
       mid = begin + n / 2;
-      for (uint32_t i = begin; i < end; ++i) {
-        Aabb& b = i < mid ? leftBounds : rightBounds;
-        b.extend(bounds_[out_.prims[i]]);
-      }
+      for (uint32_t i = begin; i < end; ++i) (i < mid ? leftBounds : rightBounds).extend(prims_[out_.prims[i]].box);
       leftCentroids = rightCentroids = centroidBounds;
     } else {
-      const Binner binner(centroidBounds, bins_);
-      const Bins bins = binRange(begin, end, binner);
+      // Fewer bins than triangles buys nothing: small nodes bin with about one per triangle.
+      const int binCount = int(std::min<uint32_t>(uint32_t(bins_), std::max<uint32_t>(n, 4u)));
+      const Binner binner(centroidBounds, binCount);
+      Bins bins(binCount);
+      binRange(begin, end, binner, bins);
       float bestCost = kInfinity;
       int bestAxis = -1, bestSplit = 0;
       for (int a = 0; a < 3; ++a) {
         if (!(ce[a] > 0.0f)) continue;
-        const auto& axis = bins.axis[a];
-        // Right-to-left: the area and count of bins [b, bins).
-        std::array<float, kMaxBins> rightArea{};
-        std::array<uint32_t, kMaxBins> rightCount{};
-        Aabb acc;
+        const Bin* axis = bins.axis[a];
+        // Right to left: the area and count of bins [b, binCount).
+        float rightArea[kMaxBins];
+        uint32_t rightCount[kMaxBins];
+        Box4 acc = Box4::empty();
         uint32_t count = 0;
-        for (int b = bins_ - 1; b > 0; --b) {
+        for (int b = binCount - 1; b > 0; --b) {
           acc.extend(axis[b].bounds);
           count += axis[b].count;
-          rightArea[b] = acc.surfaceArea();
+          rightArea[b] = acc.area();
           rightCount[b] = count;
         }
-        acc = Aabb{};
+        acc = Box4::empty();
         count = 0;
-        for (int b = 1; b < bins_; ++b) {
+        for (int b = 1; b < binCount; ++b) {
           acc.extend(axis[b - 1].bounds);
           count += axis[b - 1].count;
           if (count == 0 || rightCount[b] == 0) continue;
-          const float cost = acc.surfaceArea() * float(count) + rightArea[b] * float(rightCount[b]);
+          const float cost = acc.area() * float(count) + rightArea[b] * float(rightCount[b]);
           if (cost < bestCost) bestCost = cost, bestAxis = a, bestSplit = b;
         }
       }
-      const float area = bounds.surfaceArea();
-      const float splitCost = config_.traversalCost +
-                              (area > 0.0f ? config_.intersectionCost * bestCost / area : leafCost);
       // Some axis has extent, so its first and last bins both hold centroids: bestAxis >= 0.
+      const float area = bounds.area();
+      const float splitCost =
+          config_.traversalCost + (area > 0.0f ? config_.intersectionCost * bestCost / area : leafCost);
       if (n <= config_.maxLeafSize && splitCost >= leafCost) return makeLeaf(node, begin, end);
-      for (int b = 0; b < bins_; ++b) {
+      for (int b = 0; b < binCount; ++b) {
         const Bin& bin = bins.axis[bestAxis][b];
-        if (b < bestSplit) {
-          leftBounds.extend(bin.bounds);
-          leftCentroids.extend(bin.centroids);
-        } else {
-          rightBounds.extend(bin.bounds);
-          rightCentroids.extend(bin.centroids);
-        }
+        (b < bestSplit ? leftBounds : rightBounds).extend(bin.bounds);
+        (b < bestSplit ? leftCentroids : rightCentroids).extend(bin.centroids);
       }
       uint32_t* first = out_.prims.data() + begin;
       uint32_t* middle = std::partition(first, out_.prims.data() + end, [&](uint32_t p) {
-        return binner.bin(centroids_[p][bestAxis], bestAxis) < bestSplit;
+        return binner.bin(prims_[p].centroid, bestAxis) < bestSplit;
       });
       mid = begin + uint32_t(middle - first);
     }
     const uint32_t left = next_.fetch_add(2);
     out_.nodes[node].first = left;
     out_.nodes[node].count = 0;
-    out_.nodes[left].bounds = leftBounds;
-    out_.nodes[left + 1].bounds = rightBounds;
+    out_.nodes[left].bounds = leftBounds.aabb();
+    out_.nodes[left + 1].bounds = rightBounds.aabb();
     if (n > config_.parallelGrain) {
-      tbb::parallel_invoke([&] { build(left, begin, mid, leftCentroids); },
-                           [&] { build(left + 1, mid, end, rightCentroids); });
+      tbb::parallel_invoke([&] { build(left, begin, mid, leftBounds, leftCentroids); },
+                           [&] { build(left + 1, mid, end, rightBounds, rightCentroids); });
     } else {
-      build(left, begin, mid, leftCentroids);
-      build(left + 1, mid, end, rightCentroids);
+      build(left, begin, mid, leftBounds, leftCentroids);
+      build(left + 1, mid, end, rightBounds, rightCentroids);
     }
   }
 
   const SahBuildConfig& config_;
   BinaryBvh& out_;
   int bins_;
-  std::vector<Aabb> bounds_;
-  std::vector<glm::vec3> centroids_;
+  std::vector<Prim> prims_;
   std::atomic<uint32_t> next_{0};
 };
 
@@ -218,10 +239,16 @@ BinaryBvh buildBinnedSahBvh(std::span<const Triangle> tris, const SahBuildConfig
 double bvhSahCost(const BinaryBvh& bvh, const SahBuildConfig& config) {
   if (bvh.nodes.empty()) return 0.0;
   const double rootArea = bvh.nodes[0].bounds.surfaceArea();
+  // Summed in tree order, not array order: parallel builds number nodes in
+  // task order, and the sum must not depend on it.
   double cost = 0.0;
-  for (const BinaryBvhNode& node : bvh.nodes) {
+  std::vector<uint32_t> stack{0};
+  while (!stack.empty()) {
+    const BinaryBvhNode& node = bvh.nodes[stack.back()];
+    stack.pop_back();
     const double w = rootArea > 0.0 ? node.bounds.surfaceArea() / rootArea : 1.0;
     cost += node.leaf() ? config.intersectionCost * node.count * w : config.traversalCost * w;
+    if (!node.leaf()) stack.insert(stack.end(), {node.first + 1, node.first});
   }
   return cost;
 }

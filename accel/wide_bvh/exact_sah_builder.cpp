@@ -39,7 +39,7 @@ public:
 private:
   void build(uint32_t node, uint32_t begin, uint32_t end) {
     const uint32_t n = end - begin;
-    if (n <= 1) {
+    if (n <= config_.leafSize) {
       out_.nodes[node].first = begin, out_.nodes[node].count = n;
       return;
     }
