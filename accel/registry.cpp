@@ -128,7 +128,7 @@ std::vector<Structure> makeRows() {
        .description = "8-wide BVH collapsed from a binned SAH BVH (built on all cores), AVX2 node and triangle tests",
        .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeBvh8Cpu,
-       .memory = {0, 0}, .reads = {}},
+       .memory = {211, 0}, .reads = {}},
   };
 #if PASSTRACE_HAVE_EMBREE
   rows.push_back({.name = "embree", .family = "embree",

@@ -5,8 +5,10 @@
 // nodes bin in parallel and their two halves build as parallel tasks.
 #include <algorithm>
 #include <atomic>
+#include <memory>
 
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 #include <tbb/parallel_reduce.h>
 
@@ -37,6 +39,13 @@ struct alignas(16) Box4 {
 struct Prim {
   Box4 box;
   Box4 centroid;  // lo = hi = the box's center
+};
+
+// The builder's node: written once when its parent splits, so its storage is
+// left uninitialised (2n - 1 of them, most never touched).
+struct RawNode {
+  Box4 bounds;
+  uint32_t first, count;
 };
 
 struct Bin {
@@ -81,7 +90,7 @@ public:
   Builder(std::span<const Triangle> tris, const SahBuildConfig& config, BinaryBvh& out)
       : config_(config), out_(out), bins_(std::clamp(config.bins, 2, kMaxBins)) {
     const size_t n = tris.size();
-    prims_.resize(n);
+    prims_ = std::make_unique_for_overwrite<Prim[]>(n);
     out.prims.resize(n);
     struct Reduce {
       Box4 b = Box4::empty(), c = Box4::empty();
@@ -105,18 +114,22 @@ public:
           a.c.extend(b.c);
           return a;
         });
-    out.nodes.resize(n == 0 ? 0 : 2 * n - 1);
     if (n == 0) return;
-    out.nodes[0].bounds = root.b.aabb();
+    nodes_ = std::make_unique_for_overwrite<RawNode[]>(2 * n - 1);
+    nodes_[0].bounds = root.b;
     next_ = 1;
     build(0, 0, uint32_t(n), root.b, root.c);
     out.nodes.resize(next_.load());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, out.nodes.size(), 16384), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i)
+        out.nodes[i] = BinaryBvhNode{nodes_[i].bounds.aabb(), nodes_[i].first, nodes_[i].count};
+    });
   }
 
 private:
   void makeLeaf(uint32_t node, uint32_t begin, uint32_t end) {
-    out_.nodes[node].first = begin;
-    out_.nodes[node].count = end - begin;
+    nodes_[node].first = begin;
+    nodes_[node].count = end - begin;
   }
 
   void binRange(uint32_t begin, uint32_t end, const Binner& binner, Bins& bins) const {
@@ -208,10 +221,10 @@ private:
       mid = begin + uint32_t(middle - first);
     }
     const uint32_t left = next_.fetch_add(2);
-    out_.nodes[node].first = left;
-    out_.nodes[node].count = 0;
-    out_.nodes[left].bounds = leftBounds.aabb();
-    out_.nodes[left + 1].bounds = rightBounds.aabb();
+    nodes_[node].first = left;
+    nodes_[node].count = 0;
+    nodes_[left].bounds = leftBounds;
+    nodes_[left + 1].bounds = rightBounds;
     if (n > config_.parallelGrain) {
       tbb::parallel_invoke([&] { build(left, begin, mid, leftBounds, leftCentroids); },
                            [&] { build(left + 1, mid, end, rightBounds, rightCentroids); });
@@ -224,7 +237,8 @@ private:
   const SahBuildConfig& config_;
   BinaryBvh& out_;
   int bins_;
-  std::vector<Prim> prims_;
+  std::unique_ptr<Prim[]> prims_;
+  std::unique_ptr<RawNode[]> nodes_;
   std::atomic<uint32_t> next_{0};
 };
 

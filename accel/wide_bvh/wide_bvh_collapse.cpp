@@ -19,6 +19,8 @@ public:
   Collapser(const BinaryBvh& bvh, std::span<const Triangle> tris, const WideBvhConfig& config, WideBvh& out)
       : bvh_(bvh), tris_(tris), config_(config), out_(out) {
     counts_.resize(bvh.nodes.size());
+    out.nodes.reserve(bvh.nodes.size() / 4 + 1);
+    out.packs.reserve(bvh.prims.size() / 2 + 1);
     // Children come after their parent, so a reverse sweep sums subtrees first.
     for (size_t i = bvh.nodes.size(); i-- > 0;) {
       const BinaryBvhNode& n = bvh.nodes[i];
@@ -32,11 +34,12 @@ public:
     if (isLeaf(b)) return leaf(b);
     const uint32_t index = uint32_t(out_.nodes.size());
     out_.nodes.emplace_back();
-    std::vector<uint32_t> children{bvh_.nodes[b].first, bvh_.nodes[b].first + 1};
-    while (children.size() < size_t(kWideBvhWidth)) {
+    uint32_t children[kWideBvhWidth] = {bvh_.nodes[b].first, bvh_.nodes[b].first + 1};
+    size_t count = 2;
+    while (count < size_t(kWideBvhWidth)) {
       int open = -1;
       float largest = -1.0f;
-      for (size_t i = 0; i < children.size(); ++i) {
+      for (size_t i = 0; i < count; ++i) {
         if (isLeaf(children[i])) continue;
         const float area = bvh_.nodes[children[i]].bounds.surfaceArea();
         if (area > largest) largest = area, open = int(i);
@@ -44,10 +47,10 @@ public:
       if (open < 0) break;
       const uint32_t c = children[size_t(open)];
       children[size_t(open)] = bvh_.nodes[c].first;
-      children.push_back(bvh_.nodes[c].first + 1);
+      children[count++] = bvh_.nodes[c].first + 1;
     }
     WideBvhNode node = emptyNode();
-    for (size_t i = 0; i < children.size(); ++i) {
+    for (size_t i = 0; i < count; ++i) {
       const Aabb& box = bvh_.nodes[children[i]].bounds;
       node.minX[i] = box.min.x, node.minY[i] = box.min.y, node.minZ[i] = box.min.z;
       node.maxX[i] = box.max.x, node.maxY[i] = box.max.y, node.maxZ[i] = box.max.z;
@@ -71,7 +74,8 @@ private:
   }
 
   uint32_t leaf(uint32_t b) {
-    std::vector<uint32_t> prims;
+    std::vector<uint32_t>& prims = scratch_;  // reused: one leaf at a time
+    prims.clear();
     gather(b, prims);
     const uint32_t first = uint32_t(out_.packs.size());
     const uint32_t packs = uint32_t((prims.size() + kTrianglePackWidth - 1) / kTrianglePackWidth);
@@ -100,6 +104,7 @@ private:
   const WideBvhConfig& config_;
   WideBvh& out_;
   std::vector<uint32_t> counts_;
+  std::vector<uint32_t> scratch_;
 };
 
 }  // namespace
