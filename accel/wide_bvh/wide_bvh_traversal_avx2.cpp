@@ -28,13 +28,18 @@ WIDE_TARGET uint32_t boxTest8(const WideBvhNode& node, const RayPre& pre, float 
   __m256 s[3], l[3];
   for (int k = 0; k < 3; ++k) {
     const __m256 o = _mm256_set1_ps(pre.o[k]), inv = _mm256_set1_ps(pre.inv[k]);
-    const __m256 lo = _mm256_load_ps(mins[k]), hi = _mm256_load_ps(maxs[k]);
-    const __m256 t0 = _mm256_mul_ps(_mm256_sub_ps(lo, o), inv);
-    const __m256 t1 = _mm256_mul_ps(_mm256_sub_ps(hi, o), inv);
-    s[k] = _mm256_min_ps(t0, t1);
-    l[k] = _mm256_max_ps(t0, t1);
+    // The slab the ray enters first is known from the direction's sign: rounding
+    // is monotonic, so (min - o) inv <= (max - o) inv for inv > 0 and the
+    // scalar build's min/max of the two picks the same values (up to the sign
+    // of a zero, which no comparison sees).
+    const bool positive = pre.inv[k] > 0.0f;
+    const __m256 lo = _mm256_load_ps(positive ? mins[k] : maxs[k]);
+    const __m256 hi = _mm256_load_ps(positive ? maxs[k] : mins[k]);
+    s[k] = _mm256_mul_ps(_mm256_sub_ps(lo, o), inv);
+    l[k] = _mm256_mul_ps(_mm256_sub_ps(hi, o), inv);
     if (pre.parallel[k]) {
-      const __m256 inside = _mm256_and_ps(_mm256_cmp_ps(o, lo, _CMP_GE_OQ), _mm256_cmp_ps(o, hi, _CMP_LE_OQ));
+      const __m256 lower = _mm256_load_ps(mins[k]), upper = _mm256_load_ps(maxs[k]);
+      const __m256 inside = _mm256_and_ps(_mm256_cmp_ps(o, lower, _CMP_GE_OQ), _mm256_cmp_ps(o, upper, _CMP_LE_OQ));
       const __m256 inf = _mm256_set1_ps(kInfinity), minusInf = _mm256_set1_ps(-kInfinity);
       s[k] = _mm256_blendv_ps(inf, minusInf, inside);
       l[k] = _mm256_blendv_ps(minusInf, inf, inside);
