@@ -6,9 +6,10 @@
 #include <cmath>
 #include <vector>
 
-#include <immintrin.h>
-
 #include "accel/wide_bvh/wide_bvh_traversal.h"
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
 
 namespace passtrace {
 namespace {
@@ -102,3 +103,17 @@ bool wideBvhAvx2Available() {
 }
 
 }  // namespace passtrace
+
+#else  // not x86: no AVX2 build; the scalar traversal serves every call
+
+namespace passtrace {
+
+Hit traverseWideBvhAvx2(const WideBvh& bvh, std::span<const Triangle> tris, const Ray& ray, bool anyHit,
+                        TriangleTest test, RayStats* stats) {
+  return traverseWideBvhScalar(bvh, tris, ray, anyHit, test, stats);
+}
+
+bool wideBvhAvx2Available() { return false; }
+
+}  // namespace passtrace
+#endif
