@@ -27,7 +27,9 @@ using Int4 = int __attribute__((vector_size(16)));
 
 struct alignas(16) Box4 {
   Float4 lo, hi;
-  static Box4 empty() { return {Float4{kInfinity, kInfinity, kInfinity, 0.0f}, Float4{-kInfinity, -kInfinity, -kInfinity, 0.0f}}; }
+  static Box4 empty() {
+    return {Float4{kInfinity, kInfinity, kInfinity, 0.0f}, Float4{-kInfinity, -kInfinity, -kInfinity, 0.0f}};
+  }
   void extend(const Box4& b) {
     lo = b.lo < lo ? b.lo : lo;
     hi = b.hi > hi ? b.hi : hi;

@@ -68,7 +68,8 @@ private:
     }
     const float area = out_.nodes[node].bounds.surfaceArea();
     const float leafCost = config_.intersectionCost * float(n);
-    const float splitCost = config_.traversalCost + (area > 0.0f ? config_.intersectionCost * bestCost / area : leafCost);
+    const float splitCost =
+        config_.traversalCost + (area > 0.0f ? config_.intersectionCost * bestCost / area : leafCost);
     if (n <= config_.maxLeafSize && splitCost >= leafCost) {
       out_.nodes[node].first = begin, out_.nodes[node].count = n;
       return;

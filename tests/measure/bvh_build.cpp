@@ -13,6 +13,7 @@
 #include <ctime>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <string>
 #include <vector>
 
@@ -34,7 +35,13 @@ int main(int argc, char** argv) {
   const int threads = argc > 3 ? std::atoi(argv[3]) : 0;
   const int repeats = argc > 4 ? std::max(1, std::atoi(argv[4])) : 5;
   const bool exact = !(argc > 5 && std::strcmp(argv[5], "--no-exact") == 0);
-  const Scene scene = loadScene(argv[1], options);
+  Scene scene;
+  try {
+    scene = loadScene(argv[1], options);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", argv[1], e.what());
+    return 1;
+  }
   std::vector<tbb::global_control> limit;
   if (threads > 0) limit.emplace_back(tbb::global_control::max_allowed_parallelism, size_t(threads));
   using Clock = std::chrono::steady_clock;
