@@ -12,6 +12,7 @@
 #include "accel/kd/kd_structures.h"
 #include "accel/kd/kd_ropes_structures.h"
 #include "accel/octree/octree_structure.h"
+#include "accel/wide_bvh/wide_bvh_structure.h"
 #if PASSTRACE_HAVE_EMBREE
 #include "accel/embree/embree_accelerator.h"
 #endif
@@ -165,6 +166,11 @@ std::vector<Structure> makeRows() {
        .renderers = {Cpu, Gpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeOctreeCpu, .stream = makeOctreeStream, .mirror = makeOctreeCpu,
        .memory = {208, 263}, .reads = {}},
+      {.name = "bvh8", .family = "wide_bvh",
+       .description = "8-wide BVH collapsed from a binned SAH BVH (built on all cores), AVX2 node and triangle tests",
+       .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
+       .cpu = makeBvh8Cpu,
+       .memory = {211, 0}, .reads = {}},
   };
 #if PASSTRACE_HAVE_EMBREE
   rows.push_back({.name = "embree", .family = "embree",

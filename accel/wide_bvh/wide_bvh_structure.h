@@ -1,0 +1,16 @@
+#pragma once
+// The wide BVH's registry entry (CPU only): binned SAH build on all cores
+// (--threads), collapsed to 8 wide, traversed with AVX2 where the CPU has it
+// (scalar otherwise). Statistics: wide nodes and leaves, the binary tree's SAH
+// cost (binary_bvh.h's constants), floatsPerTriangle = node floats per triangle.
+
+#include <memory>
+#include <span>
+
+#include "accel/cpu_accelerator.h"
+
+namespace passtrace {
+
+std::unique_ptr<CpuAccelerator> makeBvh8Cpu(std::span<const Triangle> tris, const AccelBuildConfig& config);
+
+}  // namespace passtrace

@@ -1,0 +1,119 @@
+// The wide BVH's traversal with AVX2: eight slab tests per instruction, four
+// Möller–Trumbore tests per instruction. Only the functions here carry the
+// target attribute (the rest of the build stays portable); the caller checks
+// wideBvhAvx2Available() first. No fused multiply-add: the results must equal
+// the scalar build's and geometry.h's to the bit.
+#include <cmath>
+#include <vector>
+
+#include "accel/wide_bvh/wide_bvh_traversal.h"
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+
+namespace passtrace {
+namespace {
+
+#define WIDE_TARGET __attribute__((target("avx2")))
+
+struct RayPre;
+WIDE_TARGET uint32_t boxTest8(const WideBvhNode& node, const RayPre& pre, float tBest, float* tNear);
+WIDE_TARGET uint32_t packTest4(const TrianglePack& pack, const RayPre& pre, float tBest, float* t, float* u,
+                               float* v);
+
+#include "accel/wide_bvh/wide_bvh_traverse.inc"
+
+WIDE_TARGET uint32_t boxTest8(const WideBvhNode& node, const RayPre& pre, float tBest, float* tNear) {
+  const float* mins[3] = {node.minX, node.minY, node.minZ};
+  const float* maxs[3] = {node.maxX, node.maxY, node.maxZ};
+  __m256 s[3], l[3];
+  for (int k = 0; k < 3; ++k) {
+    const __m256 o = _mm256_set1_ps(pre.o[k]), inv = _mm256_set1_ps(pre.inv[k]);
+    // The slab the ray enters first is known from the direction's sign: rounding
+    // is monotonic, so (min - o) inv <= (max - o) inv for inv > 0 and the
+    // scalar build's min/max of the two picks the same values (up to the sign
+    // of a zero, which no comparison sees).
+    const bool positive = pre.inv[k] > 0.0f;
+    const __m256 lo = _mm256_load_ps(positive ? mins[k] : maxs[k]);
+    const __m256 hi = _mm256_load_ps(positive ? maxs[k] : mins[k]);
+    s[k] = _mm256_mul_ps(_mm256_sub_ps(lo, o), inv);
+    l[k] = _mm256_mul_ps(_mm256_sub_ps(hi, o), inv);
+    if (pre.parallel[k]) {
+      const __m256 lower = _mm256_load_ps(mins[k]), upper = _mm256_load_ps(maxs[k]);
+      const __m256 inside = _mm256_and_ps(_mm256_cmp_ps(o, lower, _CMP_GE_OQ), _mm256_cmp_ps(o, upper, _CMP_LE_OQ));
+      const __m256 inf = _mm256_set1_ps(kInfinity), minusInf = _mm256_set1_ps(-kInfinity);
+      s[k] = _mm256_blendv_ps(inf, minusInf, inside);
+      l[k] = _mm256_blendv_ps(minusInf, inf, inside);
+    }
+  }
+  const __m256 near = _mm256_max_ps(_mm256_max_ps(s[0], s[1]), s[2]);
+  const __m256 exit = _mm256_mul_ps(_mm256_min_ps(_mm256_min_ps(l[0], l[1]), l[2]), _mm256_set1_ps(kRobustExitScale));
+  _mm256_storeu_ps(tNear, near);
+  const __m256 hit = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(near, exit, _CMP_LE_OQ),
+                                                 _mm256_cmp_ps(exit, _mm256_setzero_ps(), _CMP_GE_OQ)),
+                                   _mm256_cmp_ps(near, _mm256_set1_ps(tBest), _CMP_LT_OQ));
+  return uint32_t(_mm256_movemask_ps(hit));
+}
+
+// (a.x b.x + a.y b.y) + a.z b.z, glm::dot's order.
+WIDE_TARGET inline __m128 dot(__m128 ax, __m128 ay, __m128 az, __m128 bx, __m128 by, __m128 bz) {
+  return _mm_add_ps(_mm_add_ps(_mm_mul_ps(ax, bx), _mm_mul_ps(ay, by)), _mm_mul_ps(az, bz));
+}
+
+WIDE_TARGET uint32_t packTest4(const TrianglePack& k, const RayPre& pre, float tBest, float* t, float* u, float* v) {
+  const __m128 dx = _mm_set1_ps(pre.d[0]), dy = _mm_set1_ps(pre.d[1]), dz = _mm_set1_ps(pre.d[2]);
+  const __m128 e1x = _mm_load_ps(k.e1x), e1y = _mm_load_ps(k.e1y), e1z = _mm_load_ps(k.e1z);
+  const __m128 e2x = _mm_load_ps(k.e2x), e2y = _mm_load_ps(k.e2y), e2z = _mm_load_ps(k.e2z);
+  const __m128 px = _mm_sub_ps(_mm_mul_ps(dy, e2z), _mm_mul_ps(e2y, dz));
+  const __m128 py = _mm_sub_ps(_mm_mul_ps(dz, e2x), _mm_mul_ps(e2z, dx));
+  const __m128 pz = _mm_sub_ps(_mm_mul_ps(dx, e2y), _mm_mul_ps(e2x, dy));
+  const __m128 det = dot(px, py, pz, e1x, e1y, e1z);
+  const __m128 invDet = _mm_div_ps(_mm_set1_ps(1.0f), det);
+  const __m128 tx = _mm_sub_ps(_mm_set1_ps(pre.o[0]), _mm_load_ps(k.v0x));
+  const __m128 ty = _mm_sub_ps(_mm_set1_ps(pre.o[1]), _mm_load_ps(k.v0y));
+  const __m128 tz = _mm_sub_ps(_mm_set1_ps(pre.o[2]), _mm_load_ps(k.v0z));
+  const __m128 uu = _mm_mul_ps(dot(px, py, pz, tx, ty, tz), invDet);
+  const __m128 qx = _mm_sub_ps(_mm_mul_ps(ty, e1z), _mm_mul_ps(e1y, tz));
+  const __m128 qy = _mm_sub_ps(_mm_mul_ps(tz, e1x), _mm_mul_ps(e1z, tx));
+  const __m128 qz = _mm_sub_ps(_mm_mul_ps(tx, e1y), _mm_mul_ps(e1x, ty));
+  const __m128 vv = _mm_mul_ps(dot(qx, qy, qz, dx, dy, dz), invDet);
+  const __m128 tt = _mm_mul_ps(dot(qx, qy, qz, e2x, e2y, e2z), invDet);
+  const __m128 zero = _mm_setzero_ps();
+  __m128 hit = _mm_and_ps(_mm_cmp_ps(det, zero, _CMP_NEQ_OQ), _mm_cmp_ps(uu, zero, _CMP_GE_OQ));
+  hit = _mm_and_ps(hit, _mm_cmp_ps(vv, zero, _CMP_GE_OQ));
+  hit = _mm_and_ps(hit, _mm_cmp_ps(_mm_add_ps(uu, vv), _mm_set1_ps(1.0f), _CMP_LE_OQ));
+  hit = _mm_and_ps(hit, _mm_cmp_ps(tt, zero, _CMP_GT_OQ));
+  hit = _mm_and_ps(hit, _mm_cmp_ps(tt, _mm_set1_ps(tBest), _CMP_LT_OQ));
+  _mm_storeu_ps(t, tt);
+  _mm_storeu_ps(u, uu);
+  _mm_storeu_ps(v, vv);
+  return uint32_t(_mm_movemask_ps(hit));
+}
+
+}  // namespace
+
+Hit traverseWideBvhAvx2(const WideBvh& bvh, std::span<const Triangle> tris, const Ray& ray, bool anyHit,
+                        TriangleTest test, RayStats* stats) {
+  return traverse(bvh, tris, ray, anyHit, test, stats);
+}
+
+bool wideBvhAvx2Available() {
+  static const bool available = __builtin_cpu_supports("avx2");
+  return available;
+}
+
+}  // namespace passtrace
+
+#else  // not x86: no AVX2 build; the scalar traversal serves every call
+
+namespace passtrace {
+
+Hit traverseWideBvhAvx2(const WideBvh& bvh, std::span<const Triangle> tris, const Ray& ray, bool anyHit,
+                        TriangleTest test, RayStats* stats) {
+  return traverseWideBvhScalar(bvh, tris, ray, anyHit, test, stats);
+}
+
+bool wideBvhAvx2Available() { return false; }
+
+}  // namespace passtrace
+#endif
