@@ -19,6 +19,11 @@ namespace passtrace {
 struct Material {
   glm::vec3 diffuse{0.8f};  // C in (N.L)C
   glm::vec3 mirror{0.0f};   // reflectance; non-zero makes the material a mirror
+  // Read by --shading whitted only (the thesis rules ignore them):
+  glm::vec3 specular{0.0f};  // Phong highlight colour Ks (0: no highlight)
+  float shininess = 1.0f;    // Phong exponent
+  float transmission = 0.0f;  // fraction of light refracted through (0 opaque, 1 clear glass)
+  float ior = 1.5f;           // index of refraction (glTF KHR_materials_ior's default)
   bool isMirror() const { return mirror.r > 0.0f || mirror.g > 0.0f || mirror.b > 0.0f; }
 };
 
