@@ -2,11 +2,12 @@
 // element's next ray; render/whitted_shading.cpp is the same computation in
 // the same order. Per nearest hit: ambient (1 - T) C; the reflection and
 // refraction rays (Schlick's Fresnel, total internal reflection) pushed on
-// the element's stack while depth < -b; then a shadow ray carrying the
-// diffuse + Phong light. An element with no ray pops its stack's top.
-// Stack of element e in uWhittedStack at float e * 12 * STACK_SIZE, entries of
-// (origin, depth) (direction, 0) (throughput, 0); color.a holds
-// count * 128 + depth - 1 (raygen's 0: empty stack, primary depth 1).
+// the element's stack while depth < -b; then per light a shadow ray carrying
+// the diffuse + Phong light (the first light's traced next, the others
+// pushed). An element with no ray pops its stack's top.
+// Stack of element e in whittedStack at float e * 12 * STACK_SIZE, entries of
+// (origin, depth) (direction, tMax) (throughput or a shadow ray's light, kind);
+// color.a holds count * 128 + depth - 1 (raygen's 0: empty stack, depth 1).
 #include "texel_address.glsl"
 #include "ray_kinds.glsl"
 
@@ -22,8 +23,9 @@ uniform sampler2D uThroughput;
 uniform sampler2D uPending;
 uniform ConstStream uTriangles;  // 4 texels per triangle: (n0, material) n1 n2 (geometric normal)
 uniform ConstStream uMaterials;  // 4 texels per material: diffuse, mirror, (Ks, shine), (T, ior)
-uniform vec3 uLightPosition;
-uniform vec3 uLightColor;
+uniform vec3 uLightPositions[MAX_LIGHTS];
+uniform vec3 uLightColors[MAX_LIGHTS];
+uniform int uLightCount;
 uniform vec3 uBackground;
 uniform float uAmbient;
 uniform float uEpsilon;
@@ -44,8 +46,7 @@ uint stackBase() {
   return (at.y * uStreamWidth + at.x) * uint(12 * STACK_SIZE);
 }
 
-void push(inout int count, vec3 origin, vec3 direction, vec3 throughput, int depth) {
-  if (max(throughput.r, max(throughput.g, throughput.b)) < uMinThroughput) return;
+void store(inout int count, vec3 origin, vec3 direction, vec3 throughput, int depth, float tMax, float kind) {
   if (count == STACK_SIZE) return;  // full: the new ray is dropped
   uint at = stackBase() + uint(12 * count);
   whittedStack[at] = origin.x;
@@ -55,10 +56,17 @@ void push(inout int count, vec3 origin, vec3 direction, vec3 throughput, int dep
   whittedStack[at + 4u] = direction.x;
   whittedStack[at + 5u] = direction.y;
   whittedStack[at + 6u] = direction.z;
+  whittedStack[at + 7u] = tMax;
   whittedStack[at + 8u] = throughput.r;
   whittedStack[at + 9u] = throughput.g;
   whittedStack[at + 10u] = throughput.b;
+  whittedStack[at + 11u] = kind;
   count += 1;
+}
+
+void push(inout int count, vec3 origin, vec3 direction, vec3 throughput, int depth) {
+  if (max(throughput.r, max(throughput.g, throughput.b)) < uMinThroughput) return;
+  store(count, origin, direction, throughput, depth, INF, RAY_NEAREST);
 }
 
 float schlick(float ior, float cosine) {
@@ -134,22 +142,23 @@ void main() {
     }
 
     if (!mirror) {
-      vec3 toLight = uLightPosition - front;
-      float distance = length(toLight);
-      vec3 l = toLight / distance;
-      float nDotL = dot(ng, l) > 0.0 ? max(dot(n, l), 0.0) : 0.0;
-      if (nDotL > 0.0) {
+      for (int k = uLightCount - 1; k >= 0; --k) {  // the first light's ray ends up traced next
+        vec3 toLight = uLightPositions[k] - front;
+        float distance = length(toLight);
+        vec3 l = toLight / distance;
+        float nDotL = dot(ng, l) > 0.0 ? max(dot(n, l), 0.0) : 0.0;
+        if (nDotL <= 0.0) continue;
         float highlight = 0.0;
         if (any(greaterThan(specular.rgb, vec3(0.0))))
           highlight = pow(max(dot(reflect(-l, n), -d), 0.0), specular.w);
-        vec3 direct = thr * uLightColor * (diffuse * (nDotL * (1.0 - t)) + specular.rgb * highlight);
-        if (any(greaterThan(direct, vec3(0.0)))) {
-          kind = RAY_SHADOW;
-          newOrigin = front;
-          newDirection = l;
-          tMax = distance;
-          pending.rgb = direct;
-        }
+        vec3 direct = thr * uLightColors[k] * (diffuse * (nDotL * (1.0 - t)) + specular.rgb * highlight);
+        if (!any(greaterThan(direct, vec3(0.0)))) continue;
+        if (kind == RAY_SHADOW) store(count, newOrigin, newDirection, pending.rgb, 0, tMax, RAY_SHADOW);
+        kind = RAY_SHADOW;
+        newOrigin = front;
+        newDirection = l;
+        tMax = distance;
+        pending.rgb = direct;
       }
     }
   }
@@ -157,11 +166,16 @@ void main() {
     count -= 1;
     uint at = stackBase() + uint(12 * count);
     newOrigin = vec3(whittedStack[at], whittedStack[at + 1u], whittedStack[at + 2u]);
-    depth = int(whittedStack[at + 3u]);
     newDirection = vec3(whittedStack[at + 4u], whittedStack[at + 5u], whittedStack[at + 6u]);
-    throughput.rgb = vec3(whittedStack[at + 8u], whittedStack[at + 9u], whittedStack[at + 10u]);
-    kind = RAY_NEAREST;
-    tMax = INF;
+    tMax = whittedStack[at + 7u];
+    vec3 weight = vec3(whittedStack[at + 8u], whittedStack[at + 9u], whittedStack[at + 10u]);
+    kind = whittedStack[at + 11u];
+    if (kind == RAY_SHADOW) {
+      pending.rgb = weight;
+    } else {
+      throughput.rgb = weight;
+      depth = int(whittedStack[at + 3u]);
+    }
   }
   color.a = float(128 * count + depth - 1);
   outOrigin = vec4(newOrigin, kind);

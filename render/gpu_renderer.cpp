@@ -55,7 +55,8 @@ void GpuRenderer::makeMixKernel() {
     mixShade_ = std::make_unique<StreamKernel>(
         "shade_whitted", "shade_whitted.frag", StreamKernel::Depth::Test,
         std::vector<std::string>{streamPagesDefine({triangles_.get(), whittedMaterials_.get()}),
-                                 "STACK_SIZE " + std::to_string(kWhittedStackSize)});
+                                 "STACK_SIZE " + std::to_string(kWhittedStackSize),
+                                 "MAX_LIGHTS " + std::to_string(kWhittedMaxLights)});
     mixShade_->bindInput("uMaterials", *whittedMaterials_);
     mixShade_->bindStorage(1, *whittedStacks_);
     mixShade_->set("uMinThroughput", kWhittedMinThroughput);
@@ -77,8 +78,13 @@ void GpuRenderer::mixLightChanged() {
   mixShade_->set("uBackground", scene_.background);
   mixShade_->set("uEpsilon", secondaryRayEpsilon(scene_));
   if (shading_.mode == ShadingMode::Whitted) {
-    mixShade_->set("uLightPosition", scene_.light.position);
-    mixShade_->set("uLightColor", scene_.light.color);
+    const int lights = whittedLightCount(scene_);
+    for (int k = 0; k < lights; ++k) {
+      const std::string index = "[" + std::to_string(k) + "]";
+      mixShade_->set(("uLightPositions" + index).c_str(), whittedLight(scene_, k).position);
+      mixShade_->set(("uLightColors" + index).c_str(), whittedLight(scene_, k).color);
+    }
+    mixShade_->set("uLightCount", lights);
     mixShade_->set("uAmbient", scene_.ambient);
   } else {
     mixShade_->set("uAoDistance", aoDistance(scene_, shading_));

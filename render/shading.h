@@ -26,11 +26,14 @@ struct PathState {
   glm::vec3 aoNormal{0.0f};  // ao: the primary hit's normal the samples are drawn about
 };
 
-// Whitted: the reflection and refraction rays a pixel has yet to trace.
+// Whitted: the rays a pixel has yet to trace: reflection and refraction
+// (Nearest, with their throughput) and shadow rays (Shadow, `throughput`
+// holding the light they carry).
 struct PendingRay {
   Ray ray;
   glm::vec3 throughput{1.0f};
   int depth = 1;
+  RayKind kind = RayKind::Nearest;
 };
 struct WhittedStack {
   std::array<PendingRay, kWhittedStackSize> entries;
@@ -45,11 +48,16 @@ void shadeElement(const Scene& scene, float epsilon, bool lastBounce, const Hit&
 
 // --shading whitted, as kernels_glsl/shade_whitted.frag. Order per nearest hit:
 // ambient; the pending rays pushed (refraction, then reflection on top);
-// then the shadow ray to the light if it can light the point (pending =
-// diffuse + Phong highlight); when the element has no ray, the top pending
-// ray is popped. Children are spawned while depth < maxDepth (-b).
+// then per light that can light the point (pending = diffuse + Phong
+// highlight) a shadow ray: the first light's is traced next, the others'
+// pushed last light first; when the element has no ray, the top pending ray
+// is popped. Children are spawned while depth < maxDepth (-b).
 void shadeWhitted(const Scene& scene, float epsilon, int maxDepth, const Hit& hit, PathState& path,
                   WhittedStack& stack);
+
+// Whitted's lights: Scene::lights (the first kWhittedMaxLights), or Scene::light alone.
+int whittedLightCount(const Scene& scene);
+const PointLight& whittedLight(const Scene& scene, int k);
 
 // --shading ao, as kernels_glsl/shade_ao.frag: a primary hit starts the AO
 // rays (any-hit, tMax = distance) about its normal; each unoccluded one adds

@@ -27,10 +27,12 @@ struct ShadingConfig {
 // are not grey everywhere.
 inline constexpr float kAoDistanceFraction = 0.1f;
 
-// Whitted: pending reflection/refraction rays kept per pixel. A push onto a
-// full stack drops the new ray (both renderers), which needs -b > 9 and a
-// ray tree branching at every level.
-inline constexpr int kWhittedStackSize = 8;
+// Whitted: pending rays kept per pixel (reflection, refraction, and the
+// shadow rays to the second and further lights). A push onto a full stack
+// drops the new ray (both renderers).
+inline constexpr int kWhittedStackSize = 16;
+// Whitted: shadow rays go to the scene's first this many lights (Scene::lights).
+inline constexpr int kWhittedMaxLights = 8;
 // Whitted: a branch whose throughput falls below this in every channel is not
 // traced (it cannot change an 8-bit pixel by more than one step).
 inline constexpr float kWhittedMinThroughput = 1.0f / 512.0f;

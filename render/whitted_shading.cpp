@@ -11,7 +11,12 @@ namespace {
 void push(WhittedStack& stack, const Ray& ray, glm::vec3 throughput, int depth) {
   if (std::max({throughput.r, throughput.g, throughput.b}) < kWhittedMinThroughput) return;
   if (stack.count == kWhittedStackSize) return;  // full: the new ray is dropped
-  stack.entries[size_t(stack.count++)] = PendingRay{ray, throughput, depth};
+  stack.entries[size_t(stack.count++)] = PendingRay{ray, throughput, depth, RayKind::Nearest};
+}
+
+void pushShadow(WhittedStack& stack, const Ray& ray, glm::vec3 light) {
+  if (stack.count == kWhittedStackSize) return;
+  stack.entries[size_t(stack.count++)] = PendingRay{ray, light, 0, RayKind::Shadow};
 }
 
 // Schlick's approximation of the dielectric Fresnel reflectance; for a ray
@@ -24,6 +29,14 @@ float schlick(float ior, float cosine) {
 }
 
 }  // namespace
+
+int whittedLightCount(const Scene& scene) {
+  return scene.lights.empty() ? 1 : std::min(int(scene.lights.size()), kWhittedMaxLights);
+}
+
+const PointLight& whittedLight(const Scene& scene, int k) {
+  return scene.lights.empty() ? scene.light : scene.lights[size_t(k)];
+}
 
 void shadeWhitted(const Scene& scene, float epsilon, int maxDepth, const Hit& hit, PathState& path,
                   WhittedStack& stack) {
@@ -75,30 +88,36 @@ void shadeWhitted(const Scene& scene, float epsilon, int maxDepth, const Hit& hi
     }
 
     if (!mirror) {
-      const glm::vec3 toLight = scene.light.position - front;
-      const float distance = glm::length(toLight);
-      const glm::vec3 l = toLight / distance;
-      const float nDotL = glm::dot(ng, l) > 0.0f ? std::max(glm::dot(n, l), 0.0f) : 0.0f;
-      if (nDotL > 0.0f) {
+      const int lights = whittedLightCount(scene);
+      for (int k = lights - 1; k >= 0; --k) {  // the first light's ray ends up traced next
+        const PointLight& light = whittedLight(scene, k);
+        const glm::vec3 toLight = light.position - front;
+        const float distance = glm::length(toLight);
+        const glm::vec3 l = toLight / distance;
+        const float nDotL = glm::dot(ng, l) > 0.0f ? std::max(glm::dot(n, l), 0.0f) : 0.0f;
+        if (nDotL <= 0.0f) continue;
         float highlight = 0.0f;
         if (m.specular.r > 0.0f || m.specular.g > 0.0f || m.specular.b > 0.0f)
           highlight = std::pow(std::max(glm::dot(glm::reflect(-l, n), -d), 0.0f), m.shininess);
-        const glm::vec3 direct =
-            thr * scene.light.color * (m.diffuse * (nDotL * (1.0f - t)) + m.specular * highlight);
-        if (direct.r > 0.0f || direct.g > 0.0f || direct.b > 0.0f) {
-          path.kind = RayKind::Shadow;
-          path.ray = Ray{front, l, distance};
-          path.pending = direct;
-        }
+        const glm::vec3 direct = thr * light.color * (m.diffuse * (nDotL * (1.0f - t)) + m.specular * highlight);
+        if (!(direct.r > 0.0f || direct.g > 0.0f || direct.b > 0.0f)) continue;
+        if (path.kind == RayKind::Shadow) pushShadow(stack, path.ray, path.pending);  // a later light's
+        path.kind = RayKind::Shadow;
+        path.ray = Ray{front, l, distance};
+        path.pending = direct;
       }
     }
   }
   if (path.kind == RayKind::None && stack.count > 0) {
     const PendingRay& next = stack.entries[size_t(--stack.count)];
-    path.kind = RayKind::Nearest;
+    path.kind = next.kind;
     path.ray = next.ray;
-    path.throughput = next.throughput;
-    path.depth = next.depth;
+    if (next.kind == RayKind::Shadow) {
+      path.pending = next.throughput;
+    } else {
+      path.throughput = next.throughput;
+      path.depth = next.depth;
+    }
   }
 }
 

@@ -516,6 +516,7 @@ Scene AffParser::finish(const fs::path& path) {
     scene_.light.position = lights_.front().position;
     scene_.light.color = glm::vec3(0.0f);
     for (const PointLight& l : lights_) scene_.light.color += l.color;
+    if (lights_.size() > 1) scene_.lights = lights_;
   }
   // BART scenes set "am" around 1-3; a third of its mean, at most 0.4, keeps
   // shadowed streets and rooms readable without flattening the lit surfaces.

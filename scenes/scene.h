@@ -63,6 +63,10 @@ struct Scene {
   std::vector<uint32_t> materialIds;  // one per triangle, indexes materials
   std::vector<Material> materials;    // at least one
   PointLight light;
+  // Every point light of the file where it has several (AFF `l` lines), for
+  // --shading whitted's shadow rays; `light` is then their sum at the first
+  // one's position (the thesis rules' one light). Empty: `light` alone.
+  std::vector<PointLight> lights;
   glm::vec3 background{0.0f};
   float ambient = 0.1f;  // fraction of C added regardless of the light
   CameraSpec camera;     // the scene's default view

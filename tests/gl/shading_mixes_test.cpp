@@ -163,6 +163,25 @@ TEST_F(GlTest, WhittedImagesAgreeAndGlassShowsTheWallBehind) {
   EXPECT_GT(meanDifference(glass.cpu, opaque.cpu), 0.02);
 }
 
+TEST_F(GlTest, WhittedShadowRaysGoToEveryLight) {
+  constexpr int kSize = 32;
+  ShadingConfig shading;
+  shading.mode = ShadingMode::Whitted;
+  Scene one = glassSphereScene(0.0f);
+  Scene two = one;
+  // Scene::light stays the first light; Scene::lights lists both (as the AFF loader fills them).
+  two.lights = {one.light, PointLight{glm::vec3(-3.0f, -2.0f, 3.0f), glm::vec3(0.5f, 0.5f, 1.0f)}};
+  const Images a = renderBoth(one, shading, kSize, 3), b = renderBoth(two, shading, kSize, 3);
+  EXPECT_LT(meanDifference(b.cpu, b.gpu), 2.0 / 255.0);
+  // Every pixel gains the second light's term or keeps what it had; many gain.
+  int brighter = 0;
+  for (size_t i = 0; i < a.cpu.size(); ++i) {
+    EXPECT_GE(b.cpu[i], a.cpu[i] - 1e-5f) << i;
+    brighter += b.cpu[i] > a.cpu[i] + 0.01f;
+  }
+  EXPECT_GT(brighter, kSize * kSize / 4);
+}
+
 TEST_F(GlTest, ThesisShadingIsTheDefaultConfig) {
   const Scene scene = loadScene("cornell");
   const auto cpuStructure = makeCpuStructure("kd-restart", scene.triangles);

@@ -207,6 +207,13 @@ TEST(AffLoader, WhittedTermsDefaultsAndClamps) {
   const Material& zero = scene.materials[scene.materialIds[1]];  // BART's opaque 0 index reads as 1.5
   EXPECT_EQ(zero.ior, 1.5f);
   EXPECT_EQ(zero.transmission, 0.0f);
+  // Two lights: summed at the first's position for the thesis rules, each kept for whitted.
+  expectNear(scene.light.position, {1, 2, 3});
+  expectNear(scene.light.color, glm::vec3(0.75f));
+  ASSERT_EQ(scene.lights.size(), 2u);
+  expectNear(scene.lights[1].position, {-1, 2, 3});
+  expectNear(scene.lights[1].color, glm::vec3(0.25f));
+  EXPECT_TRUE(loadAff(kAffData / "mirrors.aff").lights.empty());  // none or one light: Scene::light alone
 }
 
 TEST(AffLoader, CrlfAndCommentsAnywhere) {
