@@ -34,6 +34,7 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
   int size = 0;
   std::string eye, lookAt, up;
   float fov = 0.0f;
+  float aoDistance = 0.0f;
   app.add_option("-r,--renderer", o.renderer,
                  "0 OpenGL rasterized preview, 1 CPU ray tracer, 2 GPU stream ray tracer, 3 CPU ray tracer through "
                  "Intel Embree (the baseline; -a is not read)")
@@ -148,6 +149,16 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
   app.add_option("--export", o.exportPath,
                  "write the scene's triangles as passtrace built them (at --time; same order as --hits ids) to "
                  "FILE.obj (+ .mtl), .gltf or .glb, and exit without rendering");
+  app.add_option("--shading", o.shading,
+                 "ray mix: thesis (diffuse, one shadow ray, mirrors; -b traces per path), whitted (reflection and "
+                 "refraction with Fresnel, shadow rays, Phong highlights; -b = depth of the ray tree) or ao "
+                 "(ambient occlusion, grey; -b not read)")
+      ->check(CLI::IsMember({"thesis", "whitted", "ao"}))->capture_default_str();
+  app.add_option("--ao-samples", o.aoSamples, "--shading ao: cosine-distributed rays per primary hit")
+      ->check(CLI::Range(1, 4096))->capture_default_str();
+  app.add_option("--ao-distance", aoDistance,
+                 "--shading ao: the AO rays' length in scene units (default: 0.1 x the scene's box diagonal)")
+      ->check(CLI::PositiveNumber);
   app.add_flag("--list", o.list, "list the renderers, structures and scenes (with --json: as JSON) and exit");
   app.add_flag("--version", o.version, "print the version and exit");
   if (!helpFooter.empty()) app.footer(std::string(helpFooter));
@@ -175,6 +186,10 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
   if (!lookAt.empty()) o.lookAt = parseVector("--look-at", lookAt);
   if (!up.empty()) o.up = parseVector("--up", up);
   if (app.count("--fov")) o.fov = fov;
+  if (app.count("--ao-distance")) {
+    if (!std::isfinite(aoDistance)) throw std::runtime_error("--ao-distance: not a finite positive length");
+    o.aoDistance = aoDistance;
+  }
   if (o.quiet && o.progress) throw std::runtime_error("--quiet and --progress contradict each other");
   if (app.count("--json") && o.json.empty() && !o.list) throw std::runtime_error("--json: needs a file name");
   o.listJson = o.list && app.count("--json") > 0;

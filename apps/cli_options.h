@@ -62,6 +62,9 @@ struct Options {
   int frames = 0;                   // --frames N: render a sequence over the animation (0: one frame at --time)
   std::optional<float> timeStart, timeEnd;  // --time-start/--time-end (default: the scene's animation range)
   std::string dynamic = "rebuild";  // --dynamic: rebuild, two-trees or merge (with --frames, kd rows)
+  std::string shading = "thesis";   // --shading: thesis, whitted or ao
+  int aoSamples = 16;               // --ao-samples: AO rays per primary hit
+  float aoDistance = 0.0f;          // --ao-distance: AO ray length, 0 = a tenth of the scene's diagonal
   bool stats = false;               // --stats: print structure and per-ray statistics
   bool quiet = false;               // -q: print nothing but errors
   bool progress = false;            // --progress: stages on stderr even when it is no terminal

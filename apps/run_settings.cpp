@@ -46,6 +46,9 @@ RunSettings toRunSettings(const Options& o) {
   if ((o.timeStart || o.timeEnd) && o.frames == 0) throw std::runtime_error("--time-start and --time-end need --frames");
   s.dynamic = *dynamicStrategyByName(o.dynamic);  // the parser accepts only valid names
   s.glBackend = parseGlBackend(o.glBackend);
+  s.shading.mode = *shadingModeByName(o.shading);  // the parser accepts only valid names
+  s.shading.aoSamples = o.aoSamples;
+  s.shading.aoDistance = o.aoDistance;
   static const std::map<std::string, BuildParam> kFlags = {
       {"--swap-children", BuildParam::SwapChildren},   {"--gs-tries", BuildParam::GsTries},
       {"--grid-multiplier", BuildParam::GridMultiplier}, {"--kd-min-elements", BuildParam::KdMinElements},

@@ -6,8 +6,11 @@
 //                  from a hit record (tBest in1.w, 0, 0, -1)
 //   TEST_STORAGE:  storage[element index] += element index + 1; out.x = the sum so far (a pass's
 //                  writes must reach the next pass)
+//   TEST_AO_HASH:  h = pcgHash(pixel in0.x ^ pcgHash(sample in0.y)); out = (h >> 8, h & 255, aoRandom(in0.x, in0.y))
+//   TEST_AO_DIRECTION: out.xyz = aoDirection(normal in0.xyz, u in1.xy)
 #include "texel_address.glsl"
 #include "intersect.glsl"
+#include "ao_sampling.glsl"
 
 uniform ConstStream uData;
 uniform sampler2D uIn0;
@@ -40,5 +43,11 @@ void main() {
   uint index = uint(gl_FragCoord.y) * uint(uWidth) + uint(gl_FragCoord.x);
   storage[index] += float(index + 1u);
   outResult = vec4(storage[index], 0.0, 0.0, 0.0);
+#elif defined(TEST_AO_HASH)
+  uvec2 ps = uvec2(readElement(uIn0).xy);
+  uint h = pcgHash(ps.x ^ pcgHash(ps.y));
+  outResult = vec4(float(h >> 8u), float(h & 255u), aoRandom(ps.x, ps.y));
+#elif defined(TEST_AO_DIRECTION)
+  outResult = vec4(aoDirection(readElement(uIn0).xyz, readElement(uIn1).xy), 0.0);
 #endif
 }

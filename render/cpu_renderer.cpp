@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <limits>
 
 #include "render/camera.h"
 #include "render/parallel_for.h"
@@ -10,8 +11,12 @@
 
 namespace passtrace {
 
-CpuRenderer::CpuRenderer(const Scene& scene, const CpuAccelerator& accelerator, unsigned threads)
-    : scene_(scene), accelerator_(accelerator), threads_(threads ? threads : std::thread::hardware_concurrency()) {}
+CpuRenderer::CpuRenderer(const Scene& scene, const CpuAccelerator& accelerator, unsigned threads,
+                         ShadingConfig shading)
+    : scene_(scene),
+      accelerator_(accelerator),
+      threads_(threads ? threads : std::thread::hardware_concurrency()),
+      shading_(shading) {}
 
 // A batch tracer (DACRT) gets the whole generation at once: the rays of all
 // paths still going, each with its own tMax, shadow rays marked any-hit.
@@ -50,6 +55,12 @@ FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height,
   result.height = height;
   std::vector<PathState> paths(elements);
   std::vector<Hit> hits(elements);
+  // Whitted and AO trace until no pixel has a ray left: -b bounds the ray
+  // tree's depth (whitted) or is not read (ao), not the generations.
+  const bool thesis = shading_.mode == ShadingMode::Thesis;
+  const int generations = thesis ? bounces : std::numeric_limits<int>::max();
+  std::vector<WhittedStack> stacks(shading_.mode == ShadingMode::Whitted ? elements : 0);
+  const float aoLength = aoDistance(scene_, shading_);
   const auto start = std::chrono::steady_clock::now();
   std::chrono::steady_clock::duration excluded{};
 
@@ -58,7 +69,7 @@ FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height,
       paths[i].ray = primaryRay(basis, int(i % size_t(width)), int(i / size_t(width)));
   });
 
-  for (int bounce = 1; bounce <= bounces; ++bounce) {
+  for (int bounce = 1; bounce <= generations; ++bounce) {
     std::atomic<uint64_t> active{0};
     if (accelerator_.tracesBatches()) {
       active = traceGeneration(paths, hits, bounce == 1, width, height, result.stats);
@@ -89,7 +100,14 @@ FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height,
 
     const bool last = bounce == bounces;
     parallelFor(elements, kGrain, threads_, [&](size_t begin, size_t end) {
-      for (size_t i = begin; i < end; ++i) shadeElement(scene_, epsilon, last, hits[i], paths[i]);
+      for (size_t i = begin; i < end; ++i) {
+        if (thesis)
+          shadeElement(scene_, epsilon, last, hits[i], paths[i]);
+        else if (shading_.mode == ShadingMode::Whitted)
+          shadeWhitted(scene_, epsilon, bounces, hits[i], paths[i], stacks[i]);
+        else
+          shadeAo(scene_, epsilon, shading_.aoSamples, aoLength, uint32_t(i), hits[i], paths[i]);
+      }
     });
   }
   result.stats.frameMs =

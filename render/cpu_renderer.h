@@ -15,7 +15,8 @@ namespace passtrace {
 class CpuRenderer {
  public:
   // `scene` and `accelerator` must outlive the renderer. threads = 0: all cores.
-  CpuRenderer(const Scene& scene, const CpuAccelerator& accelerator, unsigned threads = 0);
+  CpuRenderer(const Scene& scene, const CpuAccelerator& accelerator, unsigned threads = 0,
+              ShadingConfig shading = {});
 
   FrameResult render(const CameraSpec& camera, int width, int height, int bounces, bool captureHits);
 
@@ -27,6 +28,7 @@ class CpuRenderer {
   const Scene& scene_;
   const CpuAccelerator& accelerator_;
   unsigned threads_;
+  ShadingConfig shading_;
 };
 
 }  // namespace passtrace

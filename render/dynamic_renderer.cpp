@@ -30,7 +30,7 @@ class DynamicCpu final : public DynamicRenderer {
     trees_.update(scene_.triangles);
     accelerator_ = makeKdDynamicCpu(trees_, variant_, scene_.triangles, config_.gpu.build.triangleTest, name_, 0.0);
     frameMs_ = millisecondsSince(start);
-    renderer_ = std::make_unique<CpuRenderer>(scene_, *accelerator_, config_.threads);
+    renderer_ = std::make_unique<CpuRenderer>(scene_, *accelerator_, config_.threads, config_.shading);
     return frameMs_;
   }
   FrameResult render(const CameraSpec& camera, bool captureHits) override {
@@ -74,7 +74,7 @@ class DynamicStream final : public DynamicRenderer {
       traversal_ = std::make_unique<GpuKdDynamicTraversal>(trees_, variant_, scene_.triangles, config_.gpu);
       ms += traversal_->firstFlattenMs();
       renderer_ = std::make_unique<GpuRenderer>(scene_, *traversal_, config_.width, config_.height,
-                                                config_.gpu.maxPageTexels);
+                                                config_.gpu.maxPageTexels, config_.shading);
     } else {
       ms += traversal_->update(scene_.triangles);
       renderer_->trianglesMoved();

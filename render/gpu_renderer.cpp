@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 
 #include "render/camera.h"
 #include "accel/ray_stream_layout.h"
@@ -19,7 +20,8 @@ using Clock = std::chrono::steady_clock;
 
 }  // namespace
 
-GpuRenderer::GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width, int height, uint64_t maxPageTexels)
+GpuRenderer::GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width, int height, uint64_t maxPageTexels,
+                         ShadingConfig shading)
     : scene_(scene),
       traversal_(traversal),
       rays_(width, height, kRaySurfaceCount),
@@ -28,7 +30,8 @@ GpuRenderer::GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width,
       materials_(materialTexels(scene), "materials", maxPageTexels),
       raygen_("raygen", "raygen.frag"),
       cull_("cull", "cull.frag", StreamKernel::Depth::Cull),
-      shade_("shade", "shade.frag", StreamKernel::Depth::Test, {streamPagesDefine({triangles_.get(), &materials_})}) {
+      shade_("shade", "shade.frag", StreamKernel::Depth::Test, {streamPagesDefine({triangles_.get(), &materials_})}),
+      shading_(shading) {
   cull_.bindInput("uState", rays_, kStateSurface);
   const char* samplers[] = {"uOrigin", "uDirection", "uState", "uHit", "uColor", "uThroughput", "uPending"};
   for (int s : kAllSurfaces) shade_.bindInput(samplers[s], rays_, s);
@@ -39,6 +42,53 @@ GpuRenderer::GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width,
   shade_.set("uBackground", scene.background);
   shade_.set("uAmbient", scene.ambient);
   shade_.set("uEpsilon", secondaryRayEpsilon(scene));
+  if (shading.mode != ShadingMode::Thesis) makeMixKernel();
+}
+
+void GpuRenderer::makeMixKernel() {
+  const char* samplers[] = {"uOrigin", "uDirection", "uState", "uHit", "uColor", "uThroughput", "uPending"};
+  if (shading_.mode == ShadingMode::Whitted) {
+    whittedMaterials_ =
+        std::make_unique<ConstInputStream>(whittedMaterialTexels(scene_), "whitted materials", maxPageTexels_);
+    whittedStacks_ = std::make_unique<StorageBuffer>("whitted ray stacks");
+    whittedStacks_->reserve(uint64_t(rays_.elementCount()) * 12u * uint64_t(kWhittedStackSize));
+    mixShade_ = std::make_unique<StreamKernel>(
+        "shade_whitted", "shade_whitted.frag", StreamKernel::Depth::Test,
+        std::vector<std::string>{streamPagesDefine({triangles_.get(), whittedMaterials_.get()}),
+                                 "STACK_SIZE " + std::to_string(kWhittedStackSize),
+                                 "MAX_LIGHTS " + std::to_string(kWhittedMaxLights)});
+    mixShade_->bindInput("uMaterials", *whittedMaterials_);
+    mixShade_->bindStorage(1, *whittedStacks_);
+    mixShade_->set("uMinThroughput", kWhittedMinThroughput);
+  } else {
+    mixShade_ = std::make_unique<StreamKernel>("shade_ao", "shade_ao.frag", StreamKernel::Depth::Test,
+                                               std::vector<std::string>{streamPagesDefine({triangles_.get()})});
+    mixShade_->set("uSamples", shading_.aoSamples);
+    mixShade_->set("uAoDistance", aoDistance(scene_, shading_));
+  }
+  for (int s : kAllSurfaces) mixShade_->bindInput(samplers[s], rays_, s);
+  mixShade_->set("uStreamWidth", uint32_t(rays_.width()));
+  mixLightChanged();
+}
+
+// The uniforms that follow the scene (trianglesMoved too).
+void GpuRenderer::mixLightChanged() {
+  if (!mixShade_) return;
+  mixShade_->bindInput("uTriangles", *triangles_);
+  mixShade_->set("uBackground", scene_.background);
+  mixShade_->set("uEpsilon", secondaryRayEpsilon(scene_));
+  if (shading_.mode == ShadingMode::Whitted) {
+    const int lights = whittedLightCount(scene_);
+    for (int k = 0; k < lights; ++k) {
+      const std::string index = "[" + std::to_string(k) + "]";
+      mixShade_->set(("uLightPositions" + index).c_str(), whittedLight(scene_, k).position);
+      mixShade_->set(("uLightColors" + index).c_str(), whittedLight(scene_, k).color);
+    }
+    mixShade_->set("uLightCount", lights);
+    mixShade_->set("uAmbient", scene_.ambient);
+  } else {
+    mixShade_->set("uAoDistance", aoDistance(scene_, shading_));
+  }
 }
 
 void GpuRenderer::trianglesMoved() {
@@ -48,6 +98,7 @@ void GpuRenderer::trianglesMoved() {
   shade_.set("uLightPosition", scene_.light.position);  // an animated light follows too
   shade_.set("uLightColor", scene_.light.color);
   shade_.set("uEpsilon", secondaryRayEpsilon(scene_));  // it follows the scene's bounds
+  mixLightChanged();
 }
 
 uint64_t GpuRenderer::retireFinished() { return cull_.execute(true); }
@@ -74,7 +125,11 @@ FrameResult GpuRenderer::render(const CameraSpec& camera, int bounces, bool capt
   rays_.setWriteSurfaces(kAllSurfaces);
   raygen_.execute();
 
-  for (int bounce = 1; bounce <= bounces; ++bounce) {
+  // Whitted and AO trace until no element has a ray left (see CpuRenderer).
+  const bool thesis = shading_.mode == ShadingMode::Thesis;
+  const int generations = thesis ? bounces : std::numeric_limits<int>::max();
+  if (shading_.mode == ShadingMode::Whitted) mixShade_->set("uMaxDepth", bounces);
+  for (int bounce = 1; bounce <= generations; ++bounce) {
     rays_.clearDepth(1.0f);
     const uint64_t active = elements - retireFinished();
     if (active == 0) break;
@@ -93,8 +148,12 @@ FrameResult GpuRenderer::render(const CameraSpec& camera, int bounces, bool capt
 
     rays_.clearDepth(1.0f);
     rays_.setWriteSurfaces(kAllSurfaces);
-    shade_.set("uLastBounce", bounce == bounces ? 1 : 0);
-    shade_.execute();
+    if (thesis) {
+      shade_.set("uLastBounce", bounce == bounces ? 1 : 0);
+      shade_.execute();
+    } else {
+      mixShade_->execute();
+    }
   }
   glFinish();
   result.stats.frameMs = std::chrono::duration<double, std::milli>(Clock::now() - start - excluded).count();

@@ -7,9 +7,11 @@
 
 #include "accel/gpu_traversal.h"
 #include "render/frame_result.h"
+#include "render/shading_config.h"
 #include "scenes/scene.h"
 #include "stream/const_input_stream.h"
 #include "stream/inout_stream.h"
+#include "stream/storage_buffer.h"
 #include "stream/stream_kernel.h"
 
 namespace passtrace {
@@ -18,7 +20,8 @@ class GpuRenderer {
  public:
   // `scene` and `traversal` must outlive the renderer. `maxPageTexels` as in
   // GpuTraversalConfig, for the shading data.
-  GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width, int height, uint64_t maxPageTexels = 0);
+  GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width, int height, uint64_t maxPageTexels = 0,
+              ShadingConfig shading = {});
 
   // Renders one frame with `bounces` traces (1 = primary rays only). Timing
   // covers ray generation through the last shading pass, ended by glFinish;
@@ -33,6 +36,8 @@ class GpuRenderer {
 
  private:
   uint64_t retireFinished();
+  void makeMixKernel();
+  void mixLightChanged();
 
   const Scene& scene_;
   GpuTraversal& traversal_;
@@ -41,6 +46,11 @@ class GpuRenderer {
   std::unique_ptr<ConstInputStream> triangles_;  // replaced by trianglesMoved()
   ConstInputStream materials_;
   StreamKernel raygen_, cull_, shade_;
+  // --shading whitted / ao: their own shading kernels, built only when chosen.
+  ShadingConfig shading_;
+  std::unique_ptr<ConstInputStream> whittedMaterials_;
+  std::unique_ptr<StorageBuffer> whittedStacks_;
+  std::unique_ptr<StreamKernel> mixShade_;
 };
 
 }  // namespace passtrace

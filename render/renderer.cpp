@@ -26,7 +26,7 @@ class PreviewRenderer final : public Renderer {
 class CpuTracer final : public Renderer {
  public:
   CpuTracer(std::unique_ptr<CpuAccelerator> structure, const Scene& scene, const RendererConfig& config)
-      : structure_(std::move(structure)), renderer_(scene, *structure_, config.threads), config_(config) {}
+      : structure_(std::move(structure)), renderer_(scene, *structure_, config.threads, config.shading), config_(config) {}
   FrameResult render(const CameraSpec& camera, bool captureHits) override {
     return renderer_.render(camera, config_.width, config_.height, config_.bounces, captureHits);
   }
@@ -42,7 +42,7 @@ class StreamTracer final : public Renderer {
  public:
   StreamTracer(std::unique_ptr<GpuTraversal> structure, const Scene& scene, const RendererConfig& config)
       : structure_(std::move(structure)),
-        renderer_(scene, *structure_, config.width, config.height, config.gpu.maxPageTexels),
+        renderer_(scene, *structure_, config.width, config.height, config.gpu.maxPageTexels, config.shading),
         config_(config) {}
   FrameResult render(const CameraSpec& camera, bool captureHits) override {
     return renderer_.render(camera, config_.bounces, captureHits);

@@ -7,6 +7,7 @@
 
 #include "accel/registry.h"
 #include "render/frame_result.h"
+#include "render/shading_config.h"
 #include "scenes/scene.h"
 
 namespace passtrace {
@@ -25,6 +26,7 @@ struct RendererConfig {
   int bounces = 3;         // traces per path, primary and shadow rays included
   unsigned threads = 0;    // CPU renderers; 0 = all cores
   GpuTraversalConfig gpu;  // build parameters (gpu.build) and the stream's own
+  ShadingConfig shading;   // --shading, --ao-samples, --ao-distance
 };
 
 // Builds `structure` (null for the preview) over `scene` and the renderer

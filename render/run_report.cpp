@@ -62,6 +62,7 @@ nlohmann::json toJson(const RunReport& r) {
       {"frames", frames},
       {"warnings", r.warnings},
   };
+  j["shading"] = r.shading;
   // Only in --frames runs, so that a single frame's keys stay as they were.
   if (!r.sequence.empty()) {
     nlohmann::json sequence = nlohmann::json::array();

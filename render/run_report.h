@@ -58,6 +58,7 @@ struct RunReport {
   // DACRT's filter counters per frame (means over the angles or frames):
   // the JSON's "dacrt" object, only in runs of a batch tracer.
   std::optional<FilterStats> dacrt;
+  std::string shading = "thesis";  // --shading: thesis, whitted or ao
 };
 
 nlohmann::json toJson(const RunReport& report);

@@ -28,4 +28,15 @@ std::vector<glm::vec4> materialTexels(const Scene& scene) {
   return texels;
 }
 
+std::vector<glm::vec4> whittedMaterialTexels(const Scene& scene) {
+  std::vector<glm::vec4> texels;
+  for (const Material& m : scene.materials) {
+    texels.emplace_back(m.diffuse, 0.0f);
+    texels.emplace_back(m.mirror, 0.0f);
+    texels.emplace_back(m.specular, m.shininess);
+    texels.emplace_back(m.transmission, m.ior, 0.0f, 0.0f);
+  }
+  return texels;
+}
+
 }  // namespace passtrace

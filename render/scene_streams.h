@@ -15,5 +15,8 @@ namespace passtrace {
 
 std::vector<glm::vec4> triangleShadingTexels(const Scene& scene);
 std::vector<glm::vec4> materialTexels(const Scene& scene);
+// --shading whitted (kernels_glsl/shade_whitted.frag): 4 texels per material
+//   (diffuse, 0) (mirror reflectance, 0) (Phong Ks, shininess) (transmission, ior, 0, 0)
+std::vector<glm::vec4> whittedMaterialTexels(const Scene& scene);
 
 }  // namespace passtrace

@@ -173,6 +173,7 @@ void describeRun(const RunSettings& o, const Structure* structure, RunReport& re
   if (o.renderer == RendererId::Embree) report.triangleTest = "embree";
   else if (o.renderer != RendererId::OpenGl) report.triangleTest = triangleTestName(o.gpu.build.triangleTest);
   report.width = o.width, report.height = o.height, report.bounces = o.bounces, report.repeats = o.repeats;
+  report.shading = shadingModeName(o.shading.mode);
 }
 
 // "out.png", k -> "out_0007.png": a sequence's frames sort by name.
@@ -231,7 +232,7 @@ RunReport renderSequence(const RunSettings& o, Progress& progress) {
   try {
     double sumMs = 0, sumRays = 0, sumSteps = 0, sumTests = 0, sumPasses = 0;
     std::optional<FilterStats> sumFilter;
-    RendererConfig config{o.width, o.height, o.bounces, o.threads, o.gpu};
+    RendererConfig config{o.width, o.height, o.bounces, o.threads, o.gpu, o.shading};
     std::unique_ptr<DynamicRenderer> dynamic;  // two-trees, merge: kept across frames
     for (int f = 0; f < o.frames; ++f) {
       const float time = o.frames == 1 ? start : start + (end - start) * float(f) / float(o.frames - 1);
@@ -343,7 +344,7 @@ RunReport runSession(const RunSettings& o, Progress& progress) {
   if (structure)
     progress.stage("building " + std::string(structure->name) + " over " + std::to_string(scene.triangles.size()) +
                    " triangles" + (o.renderer == RendererId::Gpu ? " and uploading it" : ""));
-  RendererConfig config{o.width, o.height, o.bounces, o.threads, o.gpu};
+  RendererConfig config{o.width, o.height, o.bounces, o.threads, o.gpu, o.shading};
   const std::unique_ptr<Renderer> renderer = makeRenderer(o.renderer, structure, scene, config);
   if (o.renderer == RendererId::Gpu) {
     // One untimed frame first: llvmpipe compiles each kernel on its first draw.

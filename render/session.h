@@ -15,6 +15,7 @@
 #include "accel/registry.h"
 #include "render/progress.h"
 #include "render/run_report.h"
+#include "render/shading_config.h"
 #include "scenes/scene_registry.h"
 #include "stream/gl_context.h"
 
@@ -43,6 +44,7 @@ struct RunSettings {
   int frames = 0;                       // --frames N: a sequence over the animation; 0 = one frame at --time
   std::optional<float> timeStart, timeEnd;  // --time-start/--time-end; default: the scene's animation range
   DynamicStrategy dynamic = DynamicStrategy::Rebuild;  // --dynamic: how --frames updates a kd row's structure
+  ShadingConfig shading;                // --shading, --ao-samples, --ao-distance
 };
 
 // Throws std::runtime_error (or a subclass) with a one-line message on any

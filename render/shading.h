@@ -3,8 +3,11 @@
 // kernels_glsl/shade.frag applies them on the GPU; the CPU renderer calls
 // this for every element after each trace.
 
+#include <array>
+
 #include "accel/geometry/geometry.h"
 #include "accel/ray_stream_layout.h"
+#include "render/shading_config.h"
 #include "scenes/scene.h"
 
 namespace passtrace {
@@ -18,6 +21,23 @@ struct PathState {
   glm::vec3 pending{0.0f};  // light added if the shadow ray reaches it
   uint64_t steps = 0;       // traversal steps of all rays traced so far
   uint64_t triangleTests = 0;
+  int depth = 1;   // whitted: the current ray's depth in the ray tree (primary = 1)
+  int sample = 0;  // ao: the AO ray being traced
+  glm::vec3 aoNormal{0.0f};  // ao: the primary hit's normal the samples are drawn about
+};
+
+// Whitted: the rays a pixel has yet to trace: reflection and refraction
+// (Nearest, with their throughput) and shadow rays (Shadow, `throughput`
+// holding the light they carry).
+struct PendingRay {
+  Ray ray;
+  glm::vec3 throughput{1.0f};
+  int depth = 1;
+  RayKind kind = RayKind::Nearest;
+};
+struct WhittedStack {
+  std::array<PendingRay, kWhittedStackSize> entries;
+  int count = 0;
 };
 
 // Offset of secondary ray origins along the normal, relative to the scene size.
@@ -25,5 +45,27 @@ float secondaryRayEpsilon(const Scene& scene);
 
 // Resolves `hit` for the element's ray and sets its next ray (kind None if none).
 void shadeElement(const Scene& scene, float epsilon, bool lastBounce, const Hit& hit, PathState& path);
+
+// --shading whitted, as kernels_glsl/shade_whitted.frag. Order per nearest hit:
+// ambient; the pending rays pushed (refraction, then reflection on top);
+// then per light that can light the point (pending = diffuse + Phong
+// highlight) a shadow ray: the first light's is traced next, the others'
+// pushed last light first; when the element has no ray, the top pending ray
+// is popped. Children are spawned while depth < maxDepth (-b).
+void shadeWhitted(const Scene& scene, float epsilon, int maxDepth, const Hit& hit, PathState& path,
+                  WhittedStack& stack);
+
+// Whitted's lights: Scene::lights (the first kWhittedMaxLights), or Scene::light alone.
+int whittedLightCount(const Scene& scene);
+const PointLight& whittedLight(const Scene& scene, int k);
+
+// --shading ao, as kernels_glsl/shade_ao.frag: a primary hit starts the AO
+// rays (any-hit, tMax = distance) about its normal; each unoccluded one adds
+// 1/samples to the grey; a primary miss shows the background.
+void shadeAo(const Scene& scene, float epsilon, int samples, float distance, uint32_t pixel, const Hit& hit,
+             PathState& path);
+
+// The AO rays' length: config.aoDistance, or kAoDistanceFraction of the scene's box diagonal.
+float aoDistance(const Scene& scene, const ShadingConfig& config);
 
 }  // namespace passtrace

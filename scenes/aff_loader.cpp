@@ -222,10 +222,11 @@ class AffParser {
     const float kd = r.real("material Kd"), ks = r.real("material Ks");
     const float shine = r.real("material shine");
     const float t = r.real("material transmittance");
-    r.real("material index of refraction");
+    const float ior = r.real("material index of refraction");
     Material m;
     m.diffuse = kd * colour;
     if (t == 0.0f && ks >= kAffMirrorKs && shine >= kAffMirrorShine) m.mirror = glm::vec3(ks);
+    setWhittedTerms(m, colour * ks, shine, t, ior);
     addMaterial(m);
   }
 
@@ -235,12 +236,24 @@ class AffParser {
     const glm::vec3 specular = vec3(r, "material specular colour");
     const float shine = r.real("material shine");
     const float t = r.real("material transmittance");
-    r.real("material index of refraction");
+    const float ior = r.real("material index of refraction");
     Material m;
     m.diffuse = diffuse;
     if (t == 0.0f && shine >= kAffMirrorShine && glm::all(glm::greaterThanEqual(specular, glm::vec3(kAffMirrorKs))))
       m.mirror = specular;
+    setWhittedTerms(m, specular, shine, t, ior);
     addMaterial(m);
+  }
+
+  // --shading whitted's terms: NFF's Ks colours the highlight like the
+  // surface (Haines' NFF), AFF's fm gives it; T is clamped to [0, 1]; an
+  // index of refraction below 1 (BART's opaque materials give 0) reads as 1.5.
+  // (TextReader::real has rejected non-finite numbers.)
+  static void setWhittedTerms(Material& m, glm::vec3 specular, float shine, float t, float ior) {
+    m.specular = glm::max(specular, glm::vec3(0.0f));
+    m.shininess = std::max(shine, 0.0f);
+    m.transmission = std::clamp(t, 0.0f, 1.0f);
+    m.ior = ior >= 1.0f ? ior : 1.5f;
   }
 
   void addMaterial(const Material& m) {
@@ -503,6 +516,7 @@ Scene AffParser::finish(const fs::path& path) {
     scene_.light.position = lights_.front().position;
     scene_.light.color = glm::vec3(0.0f);
     for (const PointLight& l : lights_) scene_.light.color += l.color;
+    if (lights_.size() > 1) scene_.lights = lights_;
   }
   // BART scenes set "am" around 1-3; a third of its mean, at most 0.4, keeps
   // shadowed streets and rooms readable without flattening the lit surfaces.

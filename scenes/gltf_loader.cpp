@@ -454,6 +454,39 @@ class GltfBuilder {
   GltfPose pose_;
 };
 
+// A number in material extension `ext`'s object, or `fallback` when absent.
+double extensionNumber(const tinygltf::Material& material, const char* ext, const char* key, double fallback) {
+  const auto found = material.extensions.find(ext);
+  if (found == material.extensions.end() || !found->second.Has(key)) return fallback;
+  const tinygltf::Value& v = found->second.Get(key);
+  return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
+}
+
+// --shading whitted's terms: KHR_materials_transmission's transmissionFactor
+// (default 0) and KHR_materials_ior's ior (default 1.5; below 1 reads as
+// 1.5); a Phong highlight from KHR_materials_specular's specularFactor times
+// specularColorFactor (default none) with the exponent 2 / roughness^2 - 2
+// (Blinn-Phong's match of a microfacet lobe, at least 1).
+void readWhittedTerms(const tinygltf::Material& material, Material& m) {
+  m.transmission = std::clamp(
+      float(extensionNumber(material, "KHR_materials_transmission", "transmissionFactor", 0.0)), 0.0f, 1.0f);
+  const float ior = float(extensionNumber(material, "KHR_materials_ior", "ior", 1.5));
+  m.ior = ior >= 1.0f ? ior : 1.5f;
+  const auto specular = material.extensions.find("KHR_materials_specular");
+  if (specular != material.extensions.end()) {
+    glm::vec3 colour(1.0f);
+    if (specular->second.Has("specularColorFactor")) {
+      const tinygltf::Value& c = specular->second.Get("specularColorFactor");
+      if (c.IsArray() && c.ArrayLen() >= 3)
+        for (int k = 0; k < 3; ++k) colour[k] = float(c.Get(k).GetNumberAsDouble());
+    }
+    m.specular = glm::max(colour, glm::vec3(0.0f)) *
+                 std::max(0.0f, float(extensionNumber(material, "KHR_materials_specular", "specularFactor", 1.0)));
+    const float roughness = std::clamp(float(material.pbrMetallicRoughness.roughnessFactor), 0.0f, 1.0f);
+    m.shininess = std::max(1.0f, 2.0f / std::max(roughness * roughness, 1e-3f) - 2.0f);
+  }
+}
+
 Scene GltfBuilder::build() {
   scene_.materials.push_back(Material{});
   for (std::size_t i = 0; i < model_.materials.size(); ++i) {
@@ -464,6 +497,9 @@ Scene GltfBuilder::build() {
     if (!std::isfinite(m.diffuse.x + m.diffuse.y + m.diffuse.z))
       fail("material " + std::to_string(i) + ": baseColorFactor is not finite");
     if (pbr.metallicFactor >= 0.9 && pbr.roughnessFactor <= 0.1) m.mirror = m.diffuse;
+    readWhittedTerms(model_.materials[i], m);
+    if (!std::isfinite(m.transmission + m.ior + m.shininess + m.specular.x + m.specular.y + m.specular.z))
+      fail("material " + std::to_string(i) + ": a transmission, ior or specular value is not finite");
     scene_.materials.push_back(m);
   }
   visited_.assign(model_.nodes.size(), false);

@@ -262,11 +262,17 @@ class MtlReader final : public tinyobj::MaterialReader {
 
 // Kd is the diffuse colour. illum 3 is the MTL model "reflection on, ray
 // trace on", the only one that asks for a mirror: its Ks becomes the mirror
-// reflectance. Every other model is plain diffuse.
+// reflectance. Every other model is plain diffuse. For --shading whitted:
+// Ks and Ns the Phong highlight, 1 - d (dissolve) the transmission, Ni the
+// index of refraction (tinyobjloader gives 1 when absent; below 1 reads as 1.5).
 Material toMaterial(const tinyobj::material_t& m) {
   Material out;
   out.diffuse = {m.diffuse[0], m.diffuse[1], m.diffuse[2]};
   if (m.illum == 3) out.mirror = {m.specular[0], m.specular[1], m.specular[2]};
+  out.specular = glm::max(glm::vec3(m.specular[0], m.specular[1], m.specular[2]), glm::vec3(0.0f));
+  out.shininess = std::max(m.shininess, 1.0f);
+  out.transmission = std::clamp(1.0f - m.dissolve, 0.0f, 1.0f);
+  out.ior = m.ior >= 1.0f ? m.ior : 1.5f;
   return out;
 }
 
@@ -311,6 +317,10 @@ Scene loadObj(const fs::path& path) {
     const float sum = material.diffuse.r + material.diffuse.g + material.diffuse.b + material.mirror.r +
                       material.mirror.g + material.mirror.b;
     if (!std::isfinite(sum)) throw SceneError(path, "material '" + m.name + "': a colour is not a finite float");
+    const float whitted = material.specular.r + material.specular.g + material.specular.b + material.shininess +
+                          material.transmission + material.ior;
+    if (!std::isfinite(whitted))
+      throw SceneError(path, "material '" + m.name + "': Ks, Ns, d or Ni is not a finite float");
     scene.materials.push_back(material);
   }
   // Faces without a material share one default, appended after the file's.

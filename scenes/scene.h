@@ -19,6 +19,11 @@ namespace passtrace {
 struct Material {
   glm::vec3 diffuse{0.8f};  // C in (N.L)C
   glm::vec3 mirror{0.0f};   // reflectance; non-zero makes the material a mirror
+  // Read by --shading whitted only (the thesis rules ignore them):
+  glm::vec3 specular{0.0f};  // Phong highlight colour Ks (0: no highlight)
+  float shininess = 1.0f;    // Phong exponent
+  float transmission = 0.0f;  // fraction of light refracted through (0 opaque, 1 clear glass)
+  float ior = 1.5f;           // index of refraction (glTF KHR_materials_ior's default)
   bool isMirror() const { return mirror.r > 0.0f || mirror.g > 0.0f || mirror.b > 0.0f; }
 };
 
@@ -58,6 +63,10 @@ struct Scene {
   std::vector<uint32_t> materialIds;  // one per triangle, indexes materials
   std::vector<Material> materials;    // at least one
   PointLight light;
+  // Every point light of the file where it has several (AFF `l` lines), for
+  // --shading whitted's shadow rays; `light` is then their sum at the first
+  // one's position (the thesis rules' one light). Empty: `light` alone.
+  std::vector<PointLight> lights;
   glm::vec3 background{0.0f};
   float ambient = 0.1f;  // fraction of C added regardless of the light
   CameraSpec camera;     // the scene's default view

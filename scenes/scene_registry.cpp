@@ -205,6 +205,9 @@ void bringIntoSafeRange(Scene& scene, const std::string& source) {
     scene.camera.lookAt = framed.lookAt;
   }
   if (reframeLight) scene.light.position = framedLight(scene.bounds()).position;
+  // Whitted's separate lights stay only while every one is finite; else the one framed light.
+  if (!std::all_of(scene.lights.begin(), scene.lights.end(), [](const PointLight& l) { return isFinite(l.position); }))
+    scene.lights.clear();
 }
 
 }  // namespace

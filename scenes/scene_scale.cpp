@@ -32,6 +32,7 @@ int normalizeSceneScale(Scene& scene) {
   scene.camera.eye = scaleByPowerOfTwo(scene.camera.eye, k);
   scene.camera.lookAt = scaleByPowerOfTwo(scene.camera.lookAt, k);
   scene.light.position = scaleByPowerOfTwo(scene.light.position, k);
+  for (PointLight& l : scene.lights) l.position = scaleByPowerOfTwo(l.position, k);
   scene.scaleExponent += k;
   return k;
 }

@@ -181,6 +181,41 @@ TEST(AffLoader, MirrorRule) {
   EXPECT_FALSE(scene.materials[scene.materialIds[3]].isMirror());  // one channel 0.9
 }
 
+TEST(AffLoader, WhittedTermsOfFm) {
+  const Scene scene = loadAff(kAffData / "mirrors.aff");
+  const Material& glass = scene.materials[scene.materialIds[1]];  // T 0.5, index 1.5
+  EXPECT_FLOAT_EQ(glass.transmission, 0.5f);
+  EXPECT_FLOAT_EQ(glass.ior, 1.5f);
+  expectNear(glass.specular, {1.0f, 1.0f, 1.0f});
+  EXPECT_FLOAT_EQ(glass.shininess, 5000.0f);
+  const Material& shiny = scene.materials[scene.materialIds[2]];  // T 0, index 1
+  EXPECT_EQ(shiny.transmission, 0.0f);
+  EXPECT_EQ(shiny.ior, 1.0f);
+  EXPECT_FLOAT_EQ(shiny.shininess, 157.0f);
+}
+
+TEST(AffLoader, WhittedTermsDefaultsAndClamps) {
+  EXPECT_EQ(Material{}.transmission, 0.0f);  // documented defaults: opaque, ior 1.5, no highlight
+  EXPECT_EQ(Material{}.ior, 1.5f);
+  EXPECT_EQ(Material{}.specular, glm::vec3(0.0f));
+  const Scene scene = loadAff(kAffData / "whitted_terms.aff");
+  ASSERT_EQ(scene.triangles.size(), 2u);
+  const Material& nff = scene.materials[scene.materialIds[0]];  // f: Ks colours the highlight; T 2 clamps to 1
+  expectNear(nff.specular, {0.25f, 0.125f, 0.0f});
+  EXPECT_EQ(nff.transmission, 1.0f);
+  EXPECT_FLOAT_EQ(nff.ior, 1.55f);
+  const Material& zero = scene.materials[scene.materialIds[1]];  // BART's opaque 0 index reads as 1.5
+  EXPECT_EQ(zero.ior, 1.5f);
+  EXPECT_EQ(zero.transmission, 0.0f);
+  // Two lights: summed at the first's position for the thesis rules, each kept for whitted.
+  expectNear(scene.light.position, {1, 2, 3});
+  expectNear(scene.light.color, glm::vec3(0.75f));
+  ASSERT_EQ(scene.lights.size(), 2u);
+  expectNear(scene.lights[1].position, {-1, 2, 3});
+  expectNear(scene.lights[1].color, glm::vec3(0.25f));
+  EXPECT_TRUE(loadAff(kAffData / "mirrors.aff").lights.empty());  // none or one light: Scene::light alone
+}
+
 TEST(AffLoader, CrlfAndCommentsAnywhere) {
   const fs::path dir = fs::temp_directory_path() / ("passtrace-aff-crlf-" + std::to_string(::getpid()));
   fs::create_directories(dir);

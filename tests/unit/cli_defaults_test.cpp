@@ -10,6 +10,7 @@
 
 #include "accel/registry.h"
 #include "apps/cli_options.h"
+#include "render/shading_config.h"
 
 namespace passtrace {
 namespace {
@@ -54,6 +55,18 @@ TEST(CliDefaults, EveryBuildParameterHasAFlagAndADefault) {
     EXPECT_FALSE(buildParamDefault(p).empty());
     EXPECT_NE(buildParamDefault(p), "?");
   }
+}
+
+TEST(CliDefaults, ShadingDefaultsEqualShadingConfigs) {
+  const Options o;
+  const ShadingConfig config;
+  EXPECT_EQ(shadingModeByName(o.shading), config.mode);
+  EXPECT_EQ(config.mode, ShadingMode::Thesis);  // today's images by default
+  EXPECT_EQ(o.aoSamples, config.aoSamples);
+  EXPECT_EQ(o.aoDistance, config.aoDistance);
+  for (ShadingMode m : {ShadingMode::Thesis, ShadingMode::Whitted, ShadingMode::Ao})
+    EXPECT_EQ(shadingModeByName(shadingModeName(m)), m);
+  EXPECT_EQ(shadingModeByName("phong"), std::nullopt);
 }
 
 }  // namespace

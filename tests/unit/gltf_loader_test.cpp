@@ -99,6 +99,15 @@ TEST(GltfLoader, CameraLightMaterialsAndNormals) {
   const Material& diffuse = scene.materials[scene.materialIds[1]];
   EXPECT_FALSE(diffuse.isMirror());
   expectNear(diffuse.diffuse, {0.2f, 0.4f, 0.6f});
+  // --shading whitted's terms from KHR_materials_transmission, _ior and _specular (roughness 0.5: 2/0.25 - 2).
+  EXPECT_FLOAT_EQ(diffuse.transmission, 0.75f);
+  EXPECT_FLOAT_EQ(diffuse.ior, 1.33f);
+  expectNear(diffuse.specular, {0.5f, 0.25f, 0.125f});
+  EXPECT_FLOAT_EQ(diffuse.shininess, 6.0f);
+  // Without the extensions: opaque, glTF's default ior 1.5, no highlight.
+  EXPECT_EQ(mirror.transmission, 0.0f);
+  EXPECT_EQ(mirror.ior, 1.5f);
+  expectNear(mirror.specular, {0, 0, 0});
   // Normals through the inverse transpose of scale (2, 1, 1).
   ASSERT_EQ(scene.vertexNormals.size(), 2u);
   expectNear(scene.vertexNormals[0][0], glm::normalize(glm::vec3(0.5f, 1.0f, 0.0f)));

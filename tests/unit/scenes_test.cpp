@@ -126,6 +126,9 @@ TEST(ObjLoader, MapsMtlMaterials) {
   ASSERT_EQ(scene.materials.size(), 3u);  // red, mirror, then the default
   expectVec3(scene.materials[0].diffuse, {0.9f, 0.1f, 0.1f});
   EXPECT_FALSE(scene.materials[0].isMirror());  // Ks without illum 3 is no mirror
+  expectVec3(scene.materials[0].specular, glm::vec3(0.5f));  // --shading whitted's highlight
+  EXPECT_EQ(scene.materials[0].transmission, 0.0f);  // no d: opaque
+  EXPECT_EQ(scene.materials[0].ior, 1.0f);          // no Ni: tinyobjloader reads 1
   expectVec3(scene.materials[1].mirror, glm::vec3(0.95f));
   expectVec3(scene.materials[2].diffuse, glm::vec3(0.8f));
   EXPECT_EQ(scene.materialIds, (std::vector<uint32_t>{2, 0, 1}));
