@@ -211,17 +211,27 @@ std::vector<Hit> traceGpu(GpuTraversal& traversal) {
   return hits;
 }
 
-class WatertightCpu : public ::testing::TestWithParam<TriangleTest> {};
+// One test per CPU structure and triangle test, so that each has its own
+// time limit and ctest runs them side by side.
+struct CpuCase {
+  std::string structure;
+  TriangleTest test;
+};
 
-TEST_P(WatertightCpu, AllStructures) {
-  const TriangleTest test = GetParam();
-  const std::span<const Triangle> tris = data().sphere.tris;
-  const AccelBuildConfig config = buildConfig(test);
-  for (const Structure& s : structures()) {
-    if (!s.runsOn(RendererId::Cpu)) continue;
-    const auto accelerator = makeCpuStructure(s, tris, config);
-    checkHits("cpu", accelerator->name(), test, traceCpu(*accelerator));
-  }
+std::vector<CpuCase> cpuCases() {
+  std::vector<CpuCase> cases;
+  for (const TriangleTest test : {TriangleTest::MollerTrumbore, TriangleTest::Watertight})
+    for (const Structure& s : structures())
+      if (s.runsOn(RendererId::Cpu)) cases.push_back({std::string(s.name), test});
+  return cases;
+}
+
+class WatertightCpu : public ::testing::TestWithParam<CpuCase> {};
+
+TEST_P(WatertightCpu, Structure) {
+  const CpuCase& c = GetParam();
+  const auto accelerator = makeCpuStructure(c.structure, data().sphere.tris, buildConfig(c.test));
+  checkHits("cpu", accelerator->name(), c.test, traceCpu(*accelerator));
 }
 
 class WatertightGpu : public test::GlTest, public ::testing::WithParamInterface<TriangleTest> {};
@@ -249,9 +259,11 @@ TEST_P(WatertightGpu, AllStructures) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(BothTests, WatertightCpu,
-                         ::testing::Values(TriangleTest::MollerTrumbore, TriangleTest::Watertight),
-                         [](const auto& info) { return info.param == TriangleTest::Watertight ? "watertight" : "moller_trumbore"; });
+INSTANTIATE_TEST_SUITE_P(AllStructures, WatertightCpu, ::testing::ValuesIn(cpuCases()), [](const auto& info) {
+  std::string name = info.param.structure;
+  std::replace(name.begin(), name.end(), '-', '_');
+  return name + (info.param.test == TriangleTest::Watertight ? "_watertight" : "_moller_trumbore");
+});
 INSTANTIATE_TEST_SUITE_P(BothTests, WatertightGpu,
                          ::testing::Values(TriangleTest::MollerTrumbore, TriangleTest::Watertight),
                          [](const auto& info) { return info.param == TriangleTest::Watertight ? "watertight" : "moller_trumbore"; });

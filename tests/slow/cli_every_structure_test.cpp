@@ -4,6 +4,7 @@
 // entries, bvh-stack with each --bvh-builder, the GPU kd and stack-BVH rows at
 // loop limits 3 and 64.
 
+#include <cctype>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -23,45 +24,52 @@ namespace {
 
 using test::expectHitsMatchBruteForce;
 using test::RunResult;
-using Cli = test::CliTest;
+
+// One test per (ray tracer, structure and its variant flags), so that each
+// has its own time limit and ctest runs them side by side.
+class EveryStructure : public test::CliTest, public ::testing::WithParamInterface<std::pair<int, std::string>> {
+protected:
+  // Runs the entry at each of its loop limits on `name` and checks every hit buffer.
+  void checkScene(const std::string& name, const Scene& scene, const std::string& sceneArgs, int width, int threads) {
+    const auto& [renderer, accel] = GetParam();
+    for (const std::string& loop : testing_registry::loopLimitFlags(GetParam())) {
+      const std::string file = path("h.exr");
+      const RunResult r = run("-s " + name + sceneArgs + " -b 1 -w " + std::to_string(width) + " -t " +
+                              std::to_string(threads) + " -r " + std::to_string(renderer) + " -a " + accel + loop +
+                              " --hits " + file);
+      ASSERT_EQ(r.status, 0) << r.err;
+      SCOPED_TRACE(name + " -r " + std::to_string(renderer) + " -a " + accel + loop);
+      expectHitsMatchBruteForce(file, scene, width);
+    }
+  }
+};
 
 // Issue 3: every structure on both ray tracers, bunny and Cornell box.
-TEST_F(Cli, HitBuffersOfEveryAcceleratorEqualBruteForce) {
-  const std::vector<std::pair<int, std::string>> runs = testing_registry::everyStructureRun();
-  for (const char* name : {"cornell", "bunny"}) {
-    const Scene scene = loadScene(name);
-    for (const auto& entry : runs)
-      for (const std::string& loop : testing_registry::loopLimitFlags(entry)) {
-        const auto& [renderer, accel] = entry;
-        const std::string file = path("h.exr");
-        const RunResult r = run(std::string("-s ") + name + " -b 1 -w 40 -t 2 -r " + std::to_string(renderer) +
-                                " -a " + accel + loop + " --hits " + file);
-        ASSERT_EQ(r.status, 0) << r.err;
-        SCOPED_TRACE(std::string(name) + " -r " + std::to_string(renderer) + " -a " + accel + loop);
-        expectHitsMatchBruteForce(file, scene, 40);
-      }
-  }
+TEST_P(EveryStructure, HitBuffersEqualBruteForceOnCornellAndBunny) {
+  for (const std::string name : {"cornell", "bunny"}) checkScene(name, loadScene(name), "", 40, 2);
 }
 
-// Issue 4: the BART scenes through every structure (skipped without ../shared).
-TEST_F(Cli, BartScenesHitBuffersEqualBruteForceWithEveryStructure) {
+// Issue 4: the BART scenes (skipped without ../shared).
+TEST_P(EveryStructure, HitBuffersEqualBruteForceOnBartScenes) {
   const fs::path bart = test::bartDir();
   if (bart.empty() || !fs::exists(bart / "kitchen")) GTEST_SKIP() << "BART scenes not found; set PASSTRACE_BART_DIR";
-  const std::vector<std::pair<int, std::string>> runs = testing_registry::everyStructureRun();
-  for (const char* name : {"robots", "kitchen"}) {
-    const Scene scene = loadScene(name, SceneOptions{bart});
-    for (const auto& entry : runs)
-      for (const std::string& loop : testing_registry::loopLimitFlags(entry)) {
-        const auto& [renderer, accel] = entry;
-        const std::string file = path("h.exr");
-        const RunResult r = run(std::string("-s ") + name + " --bart-dir " + bart.string() + " -b 1 -w 24 -t 1 -r " +
-                                std::to_string(renderer) + " -a " + accel + loop + " --hits " + file);
-        ASSERT_EQ(r.status, 0) << r.err;
-        SCOPED_TRACE(std::string(name) + " -r " + std::to_string(renderer) + " -a " + accel + loop);
-        expectHitsMatchBruteForce(file, scene, 24);
-      }
-  }
+  for (const std::string name : {"robots", "kitchen"})
+    checkScene(name, loadScene(name, SceneOptions{bart}), " --bart-dir " + bart.string(), 24, 1);
 }
+
+// "r2_kd_shortstack_stack_size_1" for (2, "kd-shortstack --stack-size 1").
+std::string runName(const std::pair<int, std::string>& run) {
+  std::string name = "r" + std::to_string(run.first) + "_";
+  for (const char c : run.second)
+    if (std::isalnum(static_cast<unsigned char>(c)))
+      name += c;
+    else if (name.back() != '_')
+      name += '_';
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Cli, EveryStructure, ::testing::ValuesIn(testing_registry::everyStructureRun()),
+                         [](const auto& info) { return runName(info.param); });
 
 }  // namespace
 }  // namespace passtrace
