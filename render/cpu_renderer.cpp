@@ -53,29 +53,42 @@ FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height,
   const auto start = std::chrono::steady_clock::now();
   std::chrono::steady_clock::duration excluded{};
 
-  parallelFor(elements, kGrain, threads_, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i)
-      paths[i].ray = primaryRay(basis, int(i % size_t(width)), int(i / size_t(width)));
-  });
+  const bool batches = accelerator_.tracesBatches();
+  const auto generate = [&](size_t i) {
+    paths[i].ray = primaryRay(basis, int(i % size_t(width)), int(i / size_t(width)));
+  };
+  if (batches)
+    parallelFor(elements, kGrain, threads_, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) generate(i);
+    });
 
   for (int bounce = 1; bounce <= bounces; ++bounce) {
     std::atomic<uint64_t> active{0};
-    if (accelerator_.tracesBatches()) {
+    const bool last = bounce == bounces;
+    if (batches) {
       active = traceGeneration(paths, hits, bounce == 1, width, height, result.stats);
-    } else
-    parallelFor(elements, kGrain, threads_, [&](size_t begin, size_t end) {
-      uint64_t count = 0;
-      for (size_t i = begin; i < end; ++i) {
-        PathState& path = paths[i];
-        if (path.kind == RayKind::None) continue;
-        RayStats stats;
-        hits[i] = accelerator_.intersect(path.ray, path.kind == RayKind::Shadow, &stats);
-        path.steps += stats.steps;
-        path.triangleTests += stats.triangleTests;
-        ++count;
-      }
-      active += count;
-    });
+    } else {
+      // One pass per bounce: generate (first bounce), trace, then shade a
+      // chunk while its state is in cache, the shading data prefetched while
+      // the chunk's later rays were traced. Shading reads hits[i] and leaves
+      // it as traced, so the primary hits captured below are the same.
+      parallelFor(elements, kGrain, threads_, [&](size_t begin, size_t end) {
+        uint64_t count = 0;
+        for (size_t i = begin; i < end; ++i) {
+          if (bounce == 1) generate(i);
+          PathState& path = paths[i];
+          if (path.kind == RayKind::None) continue;
+          RayStats stats;
+          hits[i] = accelerator_.intersect(path.ray, path.kind == RayKind::Shadow, &stats);
+          path.steps += stats.steps;
+          path.triangleTests += stats.triangleTests;
+          ++count;
+          if (path.kind == RayKind::Nearest) prefetchShading(scene_, hits[i], path.ray.tMax);
+        }
+        for (size_t i = begin; i < end; ++i) shadeElement(scene_, epsilon, last, hits[i], paths[i]);
+        active += count;
+      });
+    }
     if (active == 0) break;
     result.stats.rays += active;
     ++result.stats.passes;
@@ -87,10 +100,10 @@ FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height,
       excluded += std::chrono::steady_clock::now() - pause;
     }
 
-    const bool last = bounce == bounces;
-    parallelFor(elements, kGrain, threads_, [&](size_t begin, size_t end) {
-      for (size_t i = begin; i < end; ++i) shadeElement(scene_, epsilon, last, hits[i], paths[i]);
-    });
+    if (batches)
+      parallelFor(elements, kGrain, threads_, [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) shadeElement(scene_, epsilon, last, hits[i], paths[i]);
+      });
   }
   result.stats.frameMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start - excluded).count();
