@@ -504,6 +504,9 @@ def main(argv=None):
     m.add_argument("--dacrt", dest="mode", action="store_const", const="dacrt",
                    help="seed 001's experiments (scripts/bench_dacrt.py): DACRT's whole frame against build + "
                         "trace, an animation, its limits, split and conic packets -> docs/bench-dacrt/REPORT.md")
+    m.add_argument("--speed", dest="mode", action="store_const", const="speed",
+                   help="issue 17 (scripts/bench_speed.py): every row against bare Embree and against this machine's "
+                        "measured FP32 peak and bandwidth (roofline) -> docs/bench-speed/REPORT.md")
     parser.set_defaults(mode="quick")
     parser.add_argument("--binary", default=str(REPO / "build" / "passtrace"),
                         help="the passtrace to run; its --list --json gives the structures")
@@ -532,6 +535,8 @@ def main(argv=None):
         return main_section(args, argv, "papay")
     if args.mode == "dacrt":
         return main_section(args, argv, "dacrt")
+    if args.mode == "speed":
+        return main_section(args, argv, "speed")
 
     if args.out:
         out = pathlib.Path(args.out)
