@@ -113,6 +113,9 @@ struct Structure {
   // DACRT). True: the CPU traversal (-r 1) counts one step per node or cell
   // visited and tests a leaf's triangles inside that step, so node tests = steps.
   bool cpuStepsVisitNodes = false;
+  // True: each step (both renderers) tests both children of a binary node, a
+  // box or a triangle each, so node tests = 2 steps - triangle tests (bvh-fast).
+  bool stepsTestTwoChildren = false;
 
   bool runsOn(RendererId r) const { return renderers.has(r); }
   // The parameters a run of this structure on `renderer` reads.

@@ -25,7 +25,9 @@ std::string format(const char* fmt, auto... args) {
 
 std::optional<double> nodeTestsPerRay(const RunReport& r) {
   if (r.rendererId != int(RendererId::Cpu) && r.rendererId != int(RendererId::Gpu)) return std::nullopt;
-  return r.stepsVisitNodes ? r.stepsPerRay : std::max(0.0, r.stepsPerRay - r.triangleTestsPerRay);
+  if (r.stepsVisitNodes) return r.stepsPerRay;
+  const double perStep = r.stepsTestTwoChildren ? 2.0 : 1.0;
+  return std::max(0.0, perStep * r.stepsPerRay - r.triangleTestsPerRay);
 }
 
 nlohmann::json toJson(const RunReport& r) {

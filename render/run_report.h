@@ -49,6 +49,7 @@ struct RunReport {
   double stepsPerRay = 0, triangleTestsPerRay = 0;
   // Structure::cpuStepsVisitNodes of the run (-r 1 only): how nodeTestsPerRay() reads steps.
   bool stepsVisitNodes = false;
+  bool stepsTestTwoChildren = false;  // Structure::stepsTestTwoChildren of the run
   // The most of one pixel's rays over the frames (FrameStats::maxStepsPerRay).
   uint64_t maxStepsPerRay = 0, maxTriangleTestsPerRay = 0;
   std::optional<std::string> glRenderer, glBackend;  // GL runs only
