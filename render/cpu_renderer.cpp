@@ -11,7 +11,8 @@
 namespace passtrace {
 
 CpuRenderer::CpuRenderer(const Scene& scene, const CpuAccelerator& accelerator, unsigned threads)
-    : scene_(scene), accelerator_(accelerator), threads_(threads ? threads : std::thread::hardware_concurrency()) {}
+    : scene_(scene), accelerator_(accelerator), threads_(threads ? threads : std::thread::hardware_concurrency()),
+      arena_(std::make_unique<tbb::task_arena>(int(threads_))) {}
 
 // A batch tracer (DACRT) gets the whole generation at once: the rays of all
 // paths still going, each with its own tMax, shadow rays marked any-hit.
@@ -72,20 +73,24 @@ FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height,
       // chunk while its state is in cache, the shading data prefetched while
       // the chunk's later rays were traced. Shading reads hits[i] and leaves
       // it as traced, so the primary hits captured below are the same.
-      parallelFor(elements, kGrain, threads_, [&](size_t begin, size_t end) {
+      parallelFor(*arena_, elements, kGrain, [&](size_t begin, size_t end) {
         uint64_t count = 0;
-        for (size_t i = begin; i < end; ++i) {
-          if (bounce == 1) generate(i);
-          PathState& path = paths[i];
-          if (path.kind == RayKind::None) continue;
-          RayStats stats;
-          hits[i] = accelerator_.intersect(path.ray, path.kind == RayKind::Shadow, &stats);
-          path.steps += stats.steps;
-          path.triangleTests += stats.triangleTests;
-          ++count;
-          if (path.kind == RayKind::Nearest) prefetchShading(scene_, hits[i], path.ray.tMax);
+        constexpr size_t kShadeBatch = 8;  // small: the prefetched lines must survive the batch's traversals
+        for (size_t batch = begin; batch < end; batch += kShadeBatch) {
+          const size_t batchEnd = std::min(end, batch + kShadeBatch);
+          for (size_t i = batch; i < batchEnd; ++i) {
+            if (bounce == 1) generate(i);
+            PathState& path = paths[i];
+            if (path.kind == RayKind::None) continue;
+            RayStats stats;
+            hits[i] = accelerator_.intersect(path.ray, path.kind == RayKind::Shadow, &stats);
+            path.steps += stats.steps;
+            path.triangleTests += stats.triangleTests;
+            ++count;
+            if (path.kind == RayKind::Nearest) prefetchShading(scene_, hits[i], path.ray.tMax);
+          }
+          for (size_t i = batch; i < batchEnd; ++i) shadeElement(scene_, epsilon, last, hits[i], paths[i]);
         }
-        for (size_t i = begin; i < end; ++i) shadeElement(scene_, epsilon, last, hits[i], paths[i]);
         active += count;
       });
     }
