@@ -93,7 +93,9 @@ int main(int argc, char** argv) {
   const size_t n = size_t(32) << 20;
   std::vector<float> a, b, c;
   a.resize(n), b.resize(n), c.resize(n);
-  const auto part = [&](int t) { return std::pair{n * size_t(t) / size_t(threads), n * size_t(t + 1) / size_t(threads)}; };
+  const auto part = [&](int t) {
+    return std::pair{n * size_t(t) / size_t(threads), n * size_t(t + 1) / size_t(threads)};
+  };
   bestSeconds(1, threads, [&](int t) {
     const auto [lo, hi] = part(t);
     for (size_t i = lo; i < hi; ++i) a[i] = 0.0f, b[i] = 1.0f, c[i] = 2.0f;
