@@ -9,7 +9,6 @@
 #include "accel/grid/grid_structures.h"
 #include "accel/kd/kd_structures.h"
 #include "accel/octree/octree_structure.h"
-#include "accel/bvh_fast/bvh_fast_structures.h"
 #if PASSTRACE_HAVE_EMBREE
 #include "accel/embree/embree_accelerator.h"
 #endif
@@ -125,14 +124,6 @@ std::vector<Structure> makeRows() {
        .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeDacrtCpu,
        .memory = {48, 0}, .reads = {P::DacrtRLimit, P::DacrtPLimit, P::DacrtCones, P::DacrtSplit}},
-      // Issue 17: a faster stream row beside the thesis's kernels. Memory measured
-      // as registry.h says (1M -> 2M spheres: 419 -> 659 MB on -r 1, 498 -> 806 MB on -r 2).
-      {.name = "bvh-fast", .family = "bvh_fast",
-       .description = "Kay/Kajiya BVH, two child boxes per node, near child first with a per-ray stack: a whole "
-                      "traversal per pass when -l allows; on the CPU the kernel's algorithm",
-       .renderers = {Cpu, Gpu}, .number = std::nullopt, .numberedOn = {},
-       .cpu = makeBvhFastMirror, .stream = makeBvhFastStream, .mirror = makeBvhFastMirror,
-       .memory = {246, 315}, .reads = {P::SwapChildren}, .stepsTestTwoChildren = true},
   };
 #if PASSTRACE_HAVE_EMBREE
   rows.push_back({.name = "embree", .family = "embree",

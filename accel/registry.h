@@ -114,7 +114,7 @@ struct Structure {
   // visited and tests a leaf's triangles inside that step, so node tests = steps.
   bool cpuStepsVisitNodes = false;
   // True: each step (both renderers) tests both children of a binary node, a
-  // box or a triangle each, so node tests = 2 steps - triangle tests (bvh-fast).
+  // box or a triangle each, so node tests = 2 steps - triangle tests (bvh-stack).
   bool stepsTestTwoChildren = false;
 
   bool runsOn(RendererId r) const { return renderers.has(r); }

@@ -11,8 +11,7 @@
 namespace passtrace {
 
 CpuRenderer::CpuRenderer(const Scene& scene, const CpuAccelerator& accelerator, unsigned threads)
-    : scene_(scene), accelerator_(accelerator), threads_(threads ? threads : std::thread::hardware_concurrency()),
-      arena_(std::make_unique<tbb::task_arena>(int(threads_))) {}
+    : scene_(scene), accelerator_(accelerator), threads_(threads ? threads : std::thread::hardware_concurrency()) {}
 
 // A batch tracer (DACRT) gets the whole generation at once: the rays of all
 // paths still going, each with its own tMax, shadow rays marked any-hit.
@@ -54,46 +53,29 @@ FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height,
   const auto start = std::chrono::steady_clock::now();
   std::chrono::steady_clock::duration excluded{};
 
-  const bool batches = accelerator_.tracesBatches();
-  const auto generate = [&](size_t i) {
-    paths[i].ray = primaryRay(basis, int(i % size_t(width)), int(i / size_t(width)));
-  };
-  if (batches)
-    parallelFor(elements, kGrain, threads_, [&](size_t begin, size_t end) {
-      for (size_t i = begin; i < end; ++i) generate(i);
-    });
+  parallelFor(elements, kGrain, threads_, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i)
+      paths[i].ray = primaryRay(basis, int(i % size_t(width)), int(i / size_t(width)));
+  });
 
   for (int bounce = 1; bounce <= bounces; ++bounce) {
     std::atomic<uint64_t> active{0};
-    const bool last = bounce == bounces;
-    if (batches) {
+    if (accelerator_.tracesBatches()) {
       active = traceGeneration(paths, hits, bounce == 1, width, height, result.stats);
-    } else {
-      // One pass per bounce: generate (first bounce), trace, then shade a
-      // chunk while its state is in cache, the shading data prefetched while
-      // the chunk's later rays were traced. Shading reads hits[i] and leaves
-      // it as traced, so the primary hits captured below are the same.
-      parallelFor(*arena_, elements, kGrain, [&](size_t begin, size_t end) {
-        uint64_t count = 0;
-        constexpr size_t kShadeBatch = 8;  // small: the prefetched lines must survive the batch's traversals
-        for (size_t batch = begin; batch < end; batch += kShadeBatch) {
-          const size_t batchEnd = std::min(end, batch + kShadeBatch);
-          for (size_t i = batch; i < batchEnd; ++i) {
-            if (bounce == 1) generate(i);
-            PathState& path = paths[i];
-            if (path.kind == RayKind::None) continue;
-            RayStats stats;
-            hits[i] = accelerator_.intersect(path.ray, path.kind == RayKind::Shadow, &stats);
-            path.steps += stats.steps;
-            path.triangleTests += stats.triangleTests;
-            ++count;
-            if (path.kind == RayKind::Nearest) prefetchShading(scene_, hits[i], path.ray.tMax);
-          }
-          for (size_t i = batch; i < batchEnd; ++i) shadeElement(scene_, epsilon, last, hits[i], paths[i]);
-        }
-        active += count;
-      });
-    }
+    } else
+    parallelFor(elements, kGrain, threads_, [&](size_t begin, size_t end) {
+      uint64_t count = 0;
+      for (size_t i = begin; i < end; ++i) {
+        PathState& path = paths[i];
+        if (path.kind == RayKind::None) continue;
+        RayStats stats;
+        hits[i] = accelerator_.intersect(path.ray, path.kind == RayKind::Shadow, &stats);
+        path.steps += stats.steps;
+        path.triangleTests += stats.triangleTests;
+        ++count;
+      }
+      active += count;
+    });
     if (active == 0) break;
     result.stats.rays += active;
     ++result.stats.passes;
@@ -105,10 +87,10 @@ FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height,
       excluded += std::chrono::steady_clock::now() - pause;
     }
 
-    if (batches)
-      parallelFor(elements, kGrain, threads_, [&](size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i) shadeElement(scene_, epsilon, last, hits[i], paths[i]);
-      });
+    const bool last = bounce == bounces;
+    parallelFor(elements, kGrain, threads_, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) shadeElement(scene_, epsilon, last, hits[i], paths[i]);
+    });
   }
   result.stats.frameMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start - excluded).count();

@@ -3,10 +3,7 @@
 // stream renderer, one wavefront per bounce over all pixels, traced through
 // any CpuAccelerator on all cores.
 
-#include <memory>
 #include <vector>
-
-#include <tbb/task_arena.h>
 
 #include "accel/cpu_accelerator.h"
 #include "render/frame_result.h"
@@ -30,8 +27,6 @@ class CpuRenderer {
   const Scene& scene_;
   const CpuAccelerator& accelerator_;
   unsigned threads_;
-  // Kept across frames: a fresh arena per parallel loop wakes the workers anew each time.
-  std::unique_ptr<tbb::task_arena> arena_;
 };
 
 }  // namespace passtrace

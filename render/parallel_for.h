@@ -23,14 +23,4 @@ void parallelFor(size_t count, size_t grain, unsigned threads, const Body& body)
   });
 }
 
-// The same in an arena the caller keeps (a renderer's, across frames).
-template <typename Body>
-void parallelFor(tbb::task_arena& arena, size_t count, size_t grain, const Body& body) {
-  arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, count, grain ? grain : 1),
-                      [&](const tbb::blocked_range<size_t>& r) { body(r.begin(), r.end()); },
-                      tbb::simple_partitioner());
-  });
-}
-
 }  // namespace passtrace

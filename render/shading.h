@@ -23,16 +23,6 @@ struct PathState {
 // Offset of secondary ray origins along the normal, relative to the scene size.
 float secondaryRayEpsilon(const Scene& scene);
 
-// Starts loading what shadeElement will read for `hit` (its triangle, vertex
-// normals and material id), so that the loads of a chunk of elements overlap
-// the tracing of the next ones instead of stalling shading one by one.
-inline void prefetchShading(const Scene& scene, const Hit& hit, float tMax) {
-  if (!(hit.t < tMax)) return;
-  __builtin_prefetch(&scene.triangles[hit.id]);
-  if (scene.hasVertexNormals()) __builtin_prefetch(&scene.vertexNormals[hit.id]);
-  __builtin_prefetch(&scene.materialIds[hit.id]);
-}
-
 // Resolves `hit` for the element's ray and sets its next ray (kind None if none).
 void shadeElement(const Scene& scene, float epsilon, bool lastBounce, const Hit& hit, PathState& path);
 

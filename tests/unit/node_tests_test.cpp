@@ -23,7 +23,7 @@ TEST(NodeTests, StepsAreNodeOrTriangleTestsByDefault) {
   visits.stepsVisitNodes = true;  // kd-tree: triangles tested inside a leaf's step
   EXPECT_DOUBLE_EQ(*nodeTestsPerRay(visits), 20.0);
   RunReport two = report(RendererId::Gpu, 7.0, 1.0);
-  two.stepsTestTwoChildren = true;  // bvh-fast: both children per step
+  two.stepsTestTwoChildren = true;  // bvh-stack: both children per step
   EXPECT_DOUBLE_EQ(*nodeTestsPerRay(two), 13.0);
 }
 
@@ -34,13 +34,13 @@ TEST(NodeTests, EmbreeAndThePreviewCountNothing) {
 }
 
 TEST(NodeTests, RowsWhoseCpuStepsVisitNodesAreTheNodeVisitingTraversals) {
-  for (const char* name : {"kd-tree", "kd-pbrt", "grid", "octree"}) {
+  for (const char* name : {"kd-tree", "kd-pbrt", "grid", "octree-descent"}) {
     ASSERT_NE(findStructure(name), nullptr) << name;
     EXPECT_TRUE(findStructure(name)->cpuStepsVisitNodes) << name;
   }
   for (const char* name : {"kk-bvh", "kd-restart", "grid-stream", "dacrt"})
     EXPECT_FALSE(findStructure(name)->cpuStepsVisitNodes) << name;
-  EXPECT_TRUE(findStructure("bvh-fast")->stepsTestTwoChildren);
+  EXPECT_TRUE(findStructure("bvh-stack")->stepsTestTwoChildren);
 }
 
 }  // namespace
