@@ -107,6 +107,13 @@ struct Structure {
   CpuFactory mirror = nullptr;
   MemoryModel memory;
   std::vector<BuildParam> reads;  // besides the renderer's own (LoopLimit, PageTexels, TriangleTest)
+  // How --stats counts node tests (the roofline's box tests: a BVH node's box,
+  // a kd node's split plane, a grid or octree cell). By default a traversal
+  // step is one node test or one triangle test, so node tests = steps -
+  // triangle tests (every stream kernel and its mirror, the BVH traversals,
+  // DACRT). True: the CPU traversal (-r 1) counts one step per node or cell
+  // visited and tests a leaf's triangles inside that step, so node tests = steps.
+  bool cpuStepsVisitNodes = false;
 
   bool runsOn(RendererId r) const { return renderers.has(r); }
   // The parameters a run of this structure on `renderer` reads.

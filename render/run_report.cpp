@@ -1,6 +1,9 @@
 #include "render/run_report.h"
 
+#include <algorithm>
 #include <cstdio>
+
+#include "accel/registry.h"
 
 namespace passtrace {
 namespace {
@@ -19,6 +22,12 @@ std::string format(const char* fmt, auto... args) {
 }
 
 }  // namespace
+
+std::optional<double> nodeTestsPerRay(const RunReport& r) {
+  if (r.rendererId != int(RendererId::Cpu) && r.rendererId != int(RendererId::Gpu)) return std::nullopt;
+  if (r.stepsVisitNodes) return r.stepsPerRay;
+  return std::max(0.0, r.stepsPerRay - r.triangleTestsPerRay);
+}
 
 nlohmann::json toJson(const RunReport& r) {
   nlohmann::json frames = nlohmann::json::array();
@@ -79,6 +88,8 @@ nlohmann::json toJson(const RunReport& r) {
     j["dacrt"] = {{"ray_box_tests", r.dacrt->rayBox},           {"cone_box_tests", r.dacrt->coneBox},
                   {"triangle_box_tests", r.dacrt->triangleBox}, {"ray_triangle_tests", r.dacrt->rayTriangle},
                   {"nodes", r.dacrt->nodes}};
+  // Node (box) tests per ray for the roofline (scripts/bench_speed.py); null where not counted.
+  j["node_tests_per_ray"] = orNull(nodeTestsPerRay(r));
   return j;
 }
 
@@ -105,6 +116,8 @@ std::string summaryText(const RunReport& r, bool withStats) {
                    : s.structureBytes < 1e6 ? format("%.1f KB", double(s.structureBytes) / 1e3).c_str()
                                              : format("%.2f MB", double(s.structureBytes) / 1e6).c_str());
     text += format("per ray: %.2f traversal steps, %.2f triangle tests\n", r.stepsPerRay, r.triangleTestsPerRay);
+    if (const std::optional<double> nodes = nodeTestsPerRay(r))
+      text += format("node (box) tests per ray: %.2f\n", *nodes);
     text += format("max per pixel (all its rays): %llu traversal steps, %llu triangle tests\n",
                    static_cast<unsigned long long>(r.maxStepsPerRay),
                    static_cast<unsigned long long>(r.maxTriangleTestsPerRay));

@@ -47,6 +47,8 @@ struct RunReport {
   // Means over the angles of each angle's fastest repeat.
   double rays = 0, frameMs = 0, mraysPerS = 0, passes = 0, steps = 0, triangleTests = 0;
   double stepsPerRay = 0, triangleTestsPerRay = 0;
+  // Structure::cpuStepsVisitNodes of the run (-r 1 only): how nodeTestsPerRay() reads steps.
+  bool stepsVisitNodes = false;
   // The most of one pixel's rays over the frames (FrameStats::maxStepsPerRay).
   uint64_t maxStepsPerRay = 0, maxTriangleTestsPerRay = 0;
   std::optional<std::string> glRenderer, glBackend;  // GL runs only
@@ -62,6 +64,9 @@ struct RunReport {
 };
 
 nlohmann::json toJson(const RunReport& report);
+// Node tests per ray (the roofline's box tests; Structure::cpuStepsVisitNodes
+// says how steps read); null for Embree, which counts nothing, and the preview.
+std::optional<double> nodeTestsPerRay(const RunReport& report);
 // The two summary lines (three with `withStats`) passtrace prints.
 std::string summaryText(const RunReport& report, bool withStats);
 

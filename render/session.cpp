@@ -174,6 +174,7 @@ void describeRun(const RunSettings& o, const Structure* structure, RunReport& re
   else if (o.renderer != RendererId::OpenGl) report.triangleTest = triangleTestName(o.gpu.build.triangleTest);
   report.width = o.width, report.height = o.height, report.bounces = o.bounces, report.repeats = o.repeats;
   report.shading = shadingModeName(o.shading.mode);
+  report.stepsVisitNodes = structure && o.renderer == RendererId::Cpu && structure->cpuStepsVisitNodes;
 }
 
 // "out.png", k -> "out_0007.png": a sequence's frames sort by name.

@@ -96,6 +96,8 @@ SECTIONS = {
              "animation, its limits, split and conic packets -> docs/bench-dacrt/REPORT.md",
     "rt2": "seed 002's Fig. 3 (scripts/bench_rt2.py): ropes, BIH, stack BVH (SAH/SBVH/middle), kd, grid and "
            "octree with Whitted and AO rays -> docs/bench-rt2/REPORT.md",
+    "speed": "issue 17 (scripts/bench_speed.py): every row against bare Embree and against this machine's measured "
+             "FP32 peak and bandwidth (roofline) -> docs/bench-speed/REPORT.md",
 }
 HEAT_STRUCTURE = ("gpu", "kk-bvh")  # the structure whose traversal steps are drawn per scene
 

@@ -148,7 +148,7 @@ public:
       return none;
     }
 
-    RTCRayHit rh{};
+    RTCRayHit rh;  // no zero fill: setRay and the lines below set every input field
     setRay(rh.ray, ray, tfar);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
