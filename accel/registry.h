@@ -14,6 +14,7 @@
 #include <string_view>
 #include <vector>
 
+#include "accel/cone/cone_traversal.h"
 #include "accel/cpu_accelerator.h"
 #include "accel/gpu_traversal.h"
 
@@ -106,6 +107,8 @@ struct Structure {
   CpuFactory mirror = nullptr;
   MemoryModel memory;
   std::vector<BuildParam> reads;  // besides the renderer's own (LoopLimit, PageTexels, TriangleTest)
+  // --cone: the structure's cone query on the CPU renderer (accel/cone/); null = none.
+  ConeFactory cone = nullptr;
 
   bool runsOn(RendererId r) const { return renderers.has(r); }
   // The parameters a run of this structure on `renderer` reads.

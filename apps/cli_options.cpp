@@ -144,6 +144,14 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
   app.add_option("--export", o.exportPath,
                  "write the scene's triangles as passtrace built them (at --time; same order as --hits ids) to "
                  "FILE.obj (+ .mtl), .gltf or .glb, and exit without rendering");
+  app.add_option("--cone", o.cone,
+                 "trace one cone per pixel instead of rays: axis through the pixel centre, half-angle DEG degrees "
+                 "(0 <= DEG < 90); structures with a cone traversal only");
+  app.add_option("--cone-max", o.coneMax, "with --cone: keep the N nearest triangles per cone (0: every one met)")
+      ->check(CLI::Range(0u, 1u << 30))->capture_default_str();
+  app.add_option("--cone-hits", o.coneHits,
+                 "with --cone: write per pixel count (uint32: distinct triangles met, capped by --cone-max), id "
+                 "(uint32: the nearest one's index, 4294967295 for none) and t (float: its axis distance) as OpenEXR");
   app.add_flag("--list", o.list, "list the renderers, structures and scenes (with --json: as JSON) and exit");
   app.add_flag("--version", o.version, "print the version and exit");
   if (!helpFooter.empty()) app.footer(std::string(helpFooter));
@@ -171,6 +179,7 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
   if (!lookAt.empty()) o.lookAt = parseVector("--look-at", lookAt);
   if (!up.empty()) o.up = parseVector("--up", up);
   if (app.count("--fov")) o.fov = fov;
+  o.coneMaxGiven = app.count("--cone-max") > 0;
   if (o.quiet && o.progress) throw std::runtime_error("--quiet and --progress contradict each other");
   if (app.count("--json") && o.json.empty() && !o.list) throw std::runtime_error("--json: needs a file name");
   o.listJson = o.list && app.count("--json") > 0;

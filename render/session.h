@@ -43,6 +43,9 @@ struct RunSettings {
   int frames = 0;                       // --frames N: a sequence over the animation; 0 = one frame at --time
   std::optional<float> timeStart, timeEnd;  // --time-start/--time-end; default: the scene's animation range
   DynamicStrategy dynamic = DynamicStrategy::Rebuild;  // --dynamic: how --frames updates a kd row's structure
+  std::optional<float> cone;  // --cone DEG: cone queries instead of rays (render/cone_session.h)
+  uint32_t coneMax = 0;       // --cone-max: 0 = every triangle met
+  std::string coneHits;       // --cone-hits FILE.exr
 };
 
 // Throws std::runtime_error (or a subclass) with a one-line message on any

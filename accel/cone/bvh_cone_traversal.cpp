@@ -1,0 +1,77 @@
+// Cones through a BVH: a stack traversal, nearer child first (seed 000
+// section 3). Each child box is tested with the cone/box slab test
+// (coneBox, Listing 2); children are pushed farthest first so the nearest
+// is popped next. Entries that start beyond the hit list's cut-off are
+// culled on pop. The Kay/Kajiya tree of "kk-bvh"; its escape sequence
+// cannot serve a cone, which needs both children of a node.
+#include <algorithm>
+#include <chrono>
+
+#include "accel/bvh/bvh_structures.h"
+#include "accel/bvh/kay_kajiya_builder.h"
+#include "accel/cone/cone_traversal.h"
+
+namespace passtrace {
+namespace {
+
+class BvhConeTraversal final : public ConeTraversal {
+ public:
+  BvhConeTraversal(std::span<const Triangle> tris, Bvh bvh, AccelStats stats)
+      : tris_(tris), bvh_(std::move(bvh)), stats_(std::move(stats)) {}
+
+  void query(const Cone& cone, const ConeQueryConfig& config, ConeScratch&, ConeResult& result) const override {
+    result.nodes = result.triangleTests = 0;
+    ConeHitList list(result.hits, config);
+    if (bvh_.empty()) return;
+    const glm::vec3 k = coneSpread(cone);
+    struct Entry {
+      uint32_t node;
+      float t0;
+    };
+    std::vector<Entry> stack;  // depth can exceed any fixed bound for Kay/Kajiya trees
+    stack.reserve(64);
+    float t0 = std::max(0.0f, config.tNear), t1 = config.tFar;
+    if (coneBox(cone, k, bvh_.nodes[0].box, t0, t1)) stack.push_back({0, t0});
+    Entry children[64];
+    while (!stack.empty()) {
+      const Entry e = stack.back();
+      stack.pop_back();
+      if (e.t0 > list.cutoff()) continue;
+      ++result.nodes;
+      const BvhNode& n = bvh_.nodes[e.node];
+      if (n.isLeaf()) {
+        ++result.triangleTests;  // one triangle per leaf, met once
+        float t;
+        if (coneMeetsTriangle(cone, tris_[n.triangle], t)) list.insert({t, n.triangle});
+        continue;
+      }
+      int count = 0;
+      for (uint32_t c = 0; c < n.childCount && count < 64; ++c) {
+        const uint32_t child = bvh_.children[n.firstChild + c];
+        float c0 = std::max(0.0f, config.tNear), c1 = config.tFar;
+        if (coneBox(cone, k, bvh_.nodes[child].box, c0, c1) && c0 <= list.cutoff()) children[count++] = {child, c0};
+      }
+      std::sort(children, children + count, [](const Entry& a, const Entry& b) { return a.t0 > b.t0; });
+      stack.insert(stack.end(), children, children + count);
+    }
+    list.finish();
+  }
+  const AccelStats& stats() const override { return stats_; }
+
+ private:
+  std::span<const Triangle> tris_;
+  Bvh bvh_;
+  AccelStats stats_;
+};
+
+}  // namespace
+
+std::unique_ptr<ConeTraversal> makeKkBvhCone(std::span<const Triangle> tris, const AccelBuildConfig& config) {
+  const auto start = std::chrono::steady_clock::now();
+  Bvh bvh = buildKayKajiya(tris, config.kayKajiya);
+  AccelStats stats = bvhStats("kk-bvh", bvh);
+  stats.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return std::make_unique<BvhConeTraversal>(tris, std::move(bvh), std::move(stats));
+}
+
+}  // namespace passtrace
