@@ -41,9 +41,13 @@ double edgeNearest(const dvec3& s, const dvec3& v, double cos2, const dvec3& a, 
   const double qc = g0 * g0 - cos2 * glm::dot(d0, d0);
   const auto f = [&](double x) { return (qa * x + 2.0 * qh) * x + qc; };
   double best = -1.0;
+  // A root of f is on the cone's surface up to rounding; an edge nearly
+  // parallel to the axis makes qa tiny and its roots inexact, so a root
+  // must still satisfy f >= 0 to 1e-13 of |D|^2 (3e-7 of the distance).
   const auto consider = [&](double x, bool onBoundary) {
     if (x < s0 || x > s1) return;
-    if (!onBoundary && f(x) < 0.0) return;
+    const dvec3 p = d0 + x * e;
+    if (f(x) < (onBoundary ? -1e-13 * glm::dot(p, p) : 0.0)) return;
     const double g = std::max(0.0, g0 + x * g1);
     if (best < 0.0 || g < best) best = g;
   };
@@ -65,7 +69,8 @@ double edgeNearest(const dvec3& s, const dvec3& v, double cos2, const dvec3& a, 
 }  // namespace
 
 bool coneMeetsTriangle(const Cone& cone, const Triangle& tri, float& t) {
-  const dvec3 s(cone.apex), v(cone.axis), p0(tri.v0), p1(tri.v1), p2(tri.v2);
+  // The float axis is unit only to 1e-7, which would swamp f's cancellation.
+  const dvec3 s(cone.apex), v = glm::normalize(dvec3(cone.axis)), p0(tri.v0), p1(tri.v1), p2(tri.v2);
   const double c = std::cos(double(cone.halfAngle));
   const double cos2 = c * c;
   double best = axisCrossing(s, v, p0, p1, p2);
@@ -74,6 +79,19 @@ bool coneMeetsTriangle(const Cone& cone, const Triangle& tri, float& t) {
     if (g >= 0.0 && (best < 0.0 || g < best)) best = g;
   }
   if (best < 0.0) return false;
+  // Inside the triangle, the section's nearest and farthest points lie on
+  // its symmetry line: the generators in the plane of the axis and the
+  // triangle's normal. Where one crosses the triangle, it is a candidate.
+  const dvec3 n = glm::cross(p1 - p0, p2 - p0);
+  const dvec3 w = n - glm::dot(n, v) * v;
+  const double wl = glm::length(w);
+  if (wl > 0.0) {
+    const double sinA = std::sin(double(cone.halfAngle));
+    for (double side : {-1.0, 1.0}) {
+      const double lambda = axisCrossing(s, c * v + side * sinA * (w / wl), p0, p1, p2);
+      if (lambda >= 0.0) best = std::min(best, lambda * c);
+    }
+  }
   t = float(best);
   return true;
 }

@@ -71,9 +71,10 @@ inline bool coneBox(const Cone& cone, const glm::vec3& k, const Aabb& box, float
 // if no edge reaches it while it overlaps the triangle it lies inside the
 // triangle, so it is bounded (an ellipse) and holds the axis's crossing.
 // (Only an apex lying in the triangle's plane escapes this; a camera apex
-// does not.) On success t is the nearest axis distance among the axis
-// crossing and the edges' points inside the cone: at least the true nearest
-// point's, so node culling by t stays sound. Computed in double.
+// does not.) On success t is the axis distance of the triangle's nearest
+// point inside the cone: the least of the axis crossing, the edges' points
+// inside the cone, and the section's extreme points inside the triangle
+// (on the generators in the plane of axis and normal). Computed in double.
 bool coneMeetsTriangle(const Cone& cone, const Triangle& tri, float& t);
 
 // Nearest first, ties by id: the order of ConeResult::hits.
