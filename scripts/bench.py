@@ -504,6 +504,9 @@ def main(argv=None):
     m.add_argument("--dacrt", dest="mode", action="store_const", const="dacrt",
                    help="seed 001's experiments (scripts/bench_dacrt.py): DACRT's whole frame against build + "
                         "trace, an animation, its limits, split and conic packets -> docs/bench-dacrt/REPORT.md")
+    m.add_argument("--cones", dest="mode", action="store_const", const="cones",
+                   help="seed 000's experiment (scripts/bench_cones.py): cones of 0.04-5 degrees against 4/16/64 "
+                        "rays per pixel through kd-tree and kk-bvh -> docs/bench-cones/REPORT.md")
     parser.set_defaults(mode="quick")
     parser.add_argument("--binary", default=str(REPO / "build" / "passtrace"),
                         help="the passtrace to run; its --list --json gives the structures")
@@ -532,6 +535,8 @@ def main(argv=None):
         return main_section(args, argv, "papay")
     if args.mode == "dacrt":
         return main_section(args, argv, "dacrt")
+    if args.mode == "cones":
+        return main_section(args, argv, "cones")
 
     if args.out:
         out = pathlib.Path(args.out)
