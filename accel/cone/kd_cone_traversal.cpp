@@ -80,7 +80,9 @@ class KdConeTraversal final : public ConeTraversal {
   AccelStats stats_;
 };
 
-std::unique_ptr<ConeTraversal> make(const char* name, std::span<const Triangle> tris, KdTree (*build)(std::span<const Triangle>, const AccelBuildConfig&),
+using KdBuild = KdTree (*)(std::span<const Triangle>, const AccelBuildConfig&);
+
+std::unique_ptr<ConeTraversal> make(const char* name, std::span<const Triangle> tris, KdBuild build,
                                     const AccelBuildConfig& config) {
   const auto start = std::chrono::steady_clock::now();
   KdTree tree = build(tris, config);

@@ -40,7 +40,8 @@ TEST_F(ConeCli, BunnyWideConeKdTreeAndBvhAgree) { compareStructures(*this, "-s b
 TEST_F(ConeCli, KitchenKdTreeAndBvhAgree) {
   const fs::path bart = test::bartDir();
   if (bart.empty() || !fs::exists(bart / "kitchen")) GTEST_SKIP() << "BART scenes not found; set PASSTRACE_BART_DIR";
-  for (const char* degrees : {"0.5", "2.5"}) compareStructures(*this, "-s kitchen --bart-dir " + bart.string(), degrees);
+  for (const char* degrees : {"0.5", "2.5"})
+    compareStructures(*this, "-s kitchen --bart-dir " + bart.string(), degrees);
 }
 
 }  // namespace
