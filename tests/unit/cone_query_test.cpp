@@ -167,6 +167,34 @@ TEST_P(ConeTraversals, ZeroAngleIsTheRay) {
   }
 }
 
+// Resuming (seed 000 section 3): the n nearest, then the next n from just
+// past the last one's t, make the 2n nearest (when no tie straddles the cut).
+TEST(ConeResume, TNearContinuesTheList) {
+  const std::vector<Triangle> tris = uvSphere(16, 24);
+  ConeScratch scratch;
+  ConeResult all, first, second;
+  size_t resumed = 0;
+  for (const Structure& s : structures()) {
+    if (!s.cone) continue;
+    const auto row = s.cone(tris, {});
+    for (const Ray& ray : rayMix(boundsOf(tris), 8, 9)) {
+      const Cone cone{ray.origin, glm::normalize(ray.direction), radians(20)};
+      row->query(cone, {}, scratch, all);
+      row->query(cone, {3}, scratch, first);
+      if (first.hits.size() < 3) continue;
+      const float next = std::nextafter(first.hits.back().t, kInfinity);
+      if (all.hits.size() > 3 && all.hits[3].t == first.hits.back().t) continue;  // a tie at the cut
+      row->query(cone, {3, next}, scratch, second);
+      for (size_t i = 0; i < 6 && i < all.hits.size(); ++i) {
+        const ConeHit& h = i < 3 ? first.hits[i] : second.hits[i - 3];
+        EXPECT_EQ(h.id, all.hits[i].id) << s.name << " hit " << i;
+      }
+      ++resumed;
+    }
+  }
+  EXPECT_GT(resumed, 10u);
+}
+
 INSTANTIATE_TEST_SUITE_P(Meshes, ConeTraversals, ::testing::ValuesIn(standardMeshes()),
                          [](const auto& info) { return info.param.name; });
 
