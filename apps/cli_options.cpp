@@ -152,6 +152,10 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
   app.add_option("--cone-hits", o.coneHits,
                  "with --cone: write per pixel count (uint32: distinct triangles met, capped by --cone-max), id "
                  "(uint32: the nearest one's index, 4294967295 for none) and t (float: its axis distance) as OpenEXR");
+  app.add_option("--cone-nodes", o.coneNodes,
+                 "with --cone, kk-bvh: stack (nearer child first) or sorted (nodes by nearest axis distance, stop "
+                 "at the first beyond the n-th hit)")
+      ->check(CLI::IsMember({"stack", "sorted"}))->capture_default_str();
   app.add_flag("--list", o.list, "list the renderers, structures and scenes (with --json: as JSON) and exit");
   app.add_flag("--version", o.version, "print the version and exit");
   if (!helpFooter.empty()) app.footer(std::string(helpFooter));
@@ -180,6 +184,7 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
   if (!up.empty()) o.up = parseVector("--up", up);
   if (app.count("--fov")) o.fov = fov;
   o.coneMaxGiven = app.count("--cone-max") > 0;
+  if (app.count("--cone-nodes") && !o.cone) throw std::runtime_error("--cone-nodes needs --cone");
   if (o.quiet && o.progress) throw std::runtime_error("--quiet and --progress contradict each other");
   if (app.count("--json") && o.json.empty() && !o.list) throw std::runtime_error("--json: needs a file name");
   o.listJson = o.list && app.count("--json") > 0;

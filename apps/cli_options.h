@@ -75,6 +75,7 @@ struct Options {
   uint32_t coneMax = 0;             // --cone-max N: nearest triangles kept per cone; 0 = all
   std::string coneHits;             // --cone-hits FILE.exr: count, id (uint32), t (float)
   bool coneMaxGiven = false;
+  std::string coneNodes = "stack";  // --cone-nodes: the BVH's stack or node-sorted cone traversal
 };
 
 // Parses argv. Returns 0 with `options` filled, -1 when --help was printed

@@ -65,6 +65,7 @@ RunSettings toRunSettings(const Options& o) {
   if (!o.cone && (o.coneMaxGiven || !o.coneHits.empty()))
     throw std::runtime_error(std::string(o.coneMaxGiven ? "--cone-max" : "--cone-hits") + " needs --cone");
   s.cone = o.cone, s.coneMax = o.coneMax, s.coneHits = o.coneHits;
+  s.coneSortedNodes = o.coneNodes == "sorted";
   return s;
 }
 

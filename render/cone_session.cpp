@@ -47,7 +47,12 @@ void traceConeRun(const RunSettings& o, const Structure& structure, const Scene&
                  std::to_string(scene.triangles.size()) + " triangles");
   const std::unique_ptr<ConeTraversal> traversal = structure.cone(scene.triangles, o.gpu.build);
   const float halfAngle = float(double(*o.cone) * std::numbers::pi / 180.0);
-  const ConeQueryConfig config{o.coneMax};
+  ConeQueryConfig config{o.coneMax};
+  config.sortedNodes = o.coneSortedNodes;
+  if (config.sortedNodes && structure.family != "bvh") {
+    report.warnings.push_back("--cone-nodes is not read by " + std::string(structure.name) + " (ignored)");
+    progress.warn(report.warnings.back());
+  }
   ConeFrame first;
   double sumMs = 0;
   ConeReport cone;

@@ -46,6 +46,7 @@ struct RunSettings {
   std::optional<float> cone;  // --cone DEG: cone queries instead of rays (render/cone_session.h)
   uint32_t coneMax = 0;       // --cone-max: 0 = every triangle met
   std::string coneHits;       // --cone-hits FILE.exr
+  bool coneSortedNodes = false;  // --cone-nodes sorted (ConeQueryConfig::sortedNodes)
 };
 
 // Throws std::runtime_error (or a subclass) with a one-line message on any

@@ -1,5 +1,5 @@
 // Cones through a BVH: a stack traversal, nearer child first (seed 000
-// section 3). Each child box is tested with the cone/box slab test
+// section 3), or with ConeQueryConfig::sortedNodes the node-sorted one. Each child box is tested with the cone/box slab test
 // (coneBox, Listing 2); children are pushed farthest first so the nearest
 // is popped next. Entries that start beyond the hit list's cut-off are
 // culled on pop. The Kay/Kajiya tree of "kk-bvh"; its escape sequence
@@ -28,15 +28,22 @@ class BvhConeTraversal final : public ConeTraversal {
       uint32_t node;
       float t0;
     };
-    std::vector<Entry> stack;  // depth can exceed any fixed bound for Kay/Kajiya trees
+    // The stack (or, sorted, a min-heap by t0); depth can exceed any fixed
+    // bound for Kay/Kajiya trees.
+    std::vector<Entry> stack;
     stack.reserve(64);
+    const auto farther = [](const Entry& a, const Entry& b) { return a.t0 > b.t0; };
     float t0 = std::max(0.0f, config.tNear), t1 = config.tFar;
     if (coneBox(cone, k, bvh_.nodes[0].box, t0, t1)) stack.push_back({0, t0});
     Entry children[64];
     while (!stack.empty()) {
+      if (config.sortedNodes) std::pop_heap(stack.begin(), stack.end(), farther);
       const Entry e = stack.back();
       stack.pop_back();
-      if (e.t0 > list.cutoff()) continue;
+      if (e.t0 > list.cutoff()) {
+        if (config.sortedNodes) break;  // every node left starts farther
+        continue;
+      }
       ++result.nodes;
       const BvhNode& n = bvh_.nodes[e.node];
       if (n.isLeaf()) {
@@ -51,7 +58,14 @@ class BvhConeTraversal final : public ConeTraversal {
         float c0 = std::max(0.0f, config.tNear), c1 = config.tFar;
         if (coneBox(cone, k, bvh_.nodes[child].box, c0, c1) && c0 <= list.cutoff()) children[count++] = {child, c0};
       }
-      std::sort(children, children + count, [](const Entry& a, const Entry& b) { return a.t0 > b.t0; });
+      if (config.sortedNodes) {
+        for (int c = 0; c < count; ++c) {
+          stack.push_back(children[c]);
+          std::push_heap(stack.begin(), stack.end(), farther);
+        }
+        continue;
+      }
+      std::sort(children, children + count, farther);
       stack.insert(stack.end(), children, children + count);
     }
     list.finish();

@@ -23,6 +23,11 @@ struct ConeQueryConfig {
   uint32_t maxHits = 0;      // --cone-max: keep the n nearest; 0 = every triangle met
   float tNear = 0.0f;        // triangles nearer than this along the axis are skipped
   float tFar = kInfinity;    // ...and farther than this
+  // --cone-nodes sorted: the BVH visits nodes in order of their nearest axis
+  // distance (a heap) and stops at the first beyond the cut-off (seed 000's
+  // node-sorted traversal); false: the stack, nearer child first. The
+  // kd-tree's traversal is the stack either way.
+  bool sortedNodes = false;
 };
 
 struct ConeHit {

@@ -65,6 +65,8 @@ TEST_F(Cli, ConeBadValuesAreOneLineErrors) {
   expectOneLineError(run("-s cornell -r 1 -w 8 -a kd-tree --cone 1 --cone-max -2" + out), "--cone-max");
   expectOneLineError(run("-s cornell -r 1 -w 8 -a kd-tree --cone 1 --cone-hits " + path("c.png")), "--cone-hits");
   expectOneLineError(run("-s cornell -r 1 -w 8 -a kd-tree --cone 1 -o " + path("c.png") + out), "-o");
+  expectOneLineError(run("-s cornell -r 1 -w 8 -a kk-bvh --cone 1 --cone-nodes heap" + out), "--cone-nodes");
+  expectOneLineError(run("-s cornell -r 1 -w 8 -a kk-bvh --cone-nodes sorted" + out), "--cone-nodes");
 }
 
 }  // namespace

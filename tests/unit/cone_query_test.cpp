@@ -133,8 +133,11 @@ TEST_P(ConeTraversals, MatchBruteForce) {
         const ConeQueryConfig config{maxHits};
         brute->query(cone, config, scratch, expected);
         nonEmpty += !expected.hits.empty();
-        for (const auto& row : rows) {
-          row->query(cone, config, scratch, got);
+        for (const auto& row : rows)
+          for (bool sorted : {false, true}) {
+          ConeQueryConfig variant = config;
+          variant.sortedNodes = sorted;
+          row->query(cone, variant, scratch, got);
           ASSERT_EQ(got.hits.size(), expected.hits.size()) << row->stats().name << " " << degrees << " deg ray " << i
               << " max " << maxHits << " o " << cone.apex.x << "," << cone.apex.y << "," << cone.apex.z << " d "
               << cone.axis.x << "," << cone.axis.y << "," << cone.axis.z;
@@ -142,7 +145,7 @@ TEST_P(ConeTraversals, MatchBruteForce) {
             EXPECT_EQ(got.hits[h].id, expected.hits[h].id) << row->stats().name << " ray " << i << " hit " << h;
             EXPECT_EQ(got.hits[h].t, expected.hits[h].t) << row->stats().name << " ray " << i << " hit " << h;
           }
-        }
+          }
       }
   if (tris.size() > 1) EXPECT_GT(nonEmpty, 0u);
 }
