@@ -126,8 +126,8 @@ TEST_P(ConeTraversals, MatchBruteForce) {
   ConeResult expected, got;
   size_t nonEmpty = 0;
   const std::vector<Ray> rays = rayMix(bounds, 12, 3);
-  for (float degrees : {0.0f, 0.04f, 0.5f, 2.5f, 10.0f, 45.0f})
-    for (uint32_t maxHits : {0u, 1u, 4u})
+  for (float degrees : {0.0f, 0.04f, 0.5f, 2.5f, 30.0f})
+    for (uint32_t maxHits : {0u, 4u})
       for (size_t i = 0; i < rays.size(); ++i) {
         const Cone cone{rays[i].origin, glm::normalize(rays[i].direction), radians(degrees)};
         const ConeQueryConfig config{maxHits};
