@@ -135,19 +135,21 @@ TEST_P(ConeTraversals, MatchBruteForce) {
         nonEmpty += !expected.hits.empty();
         for (const auto& row : rows)
           for (bool sorted : {false, true}) {
-          ConeQueryConfig variant = config;
-          variant.sortedNodes = sorted;
-          row->query(cone, variant, scratch, got);
-          ASSERT_EQ(got.hits.size(), expected.hits.size()) << row->stats().name << " " << degrees << " deg ray " << i
-              << " max " << maxHits << " o " << cone.apex.x << "," << cone.apex.y << "," << cone.apex.z << " d "
-              << cone.axis.x << "," << cone.axis.y << "," << cone.axis.z;
-          for (size_t h = 0; h < got.hits.size(); ++h) {
-            EXPECT_EQ(got.hits[h].id, expected.hits[h].id) << row->stats().name << " ray " << i << " hit " << h;
-            EXPECT_EQ(got.hits[h].t, expected.hits[h].t) << row->stats().name << " ray " << i << " hit " << h;
-          }
+            ConeQueryConfig variant = config;
+            variant.sortedNodes = sorted;
+            row->query(cone, variant, scratch, got);
+            ASSERT_EQ(got.hits.size(), expected.hits.size())
+                << row->stats().name << " " << degrees << " deg ray " << i << " max " << maxHits << " sorted "
+                << sorted;
+            for (size_t h = 0; h < got.hits.size(); ++h) {
+              EXPECT_EQ(got.hits[h].id, expected.hits[h].id) << row->stats().name << " ray " << i << " hit " << h;
+              EXPECT_EQ(got.hits[h].t, expected.hits[h].t) << row->stats().name << " ray " << i << " hit " << h;
+            }
           }
       }
-  if (tris.size() > 1) EXPECT_GT(nonEmpty, 0u);
+  if (tris.size() > 1) {
+    EXPECT_GT(nonEmpty, 0u);
+  }
 }
 
 // A cone of 0 degrees is the ray: it meets whatever the ray hits, never
