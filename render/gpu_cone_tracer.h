@@ -1,0 +1,30 @@
+#pragma once
+// Cone queries on the stream path (-r 2 --cone): one cone per pixel through
+// the kd-tree's cone kernel (kernels_glsl/cone/kd_cone.frag), the GPU twin of
+// KdConeTraversal (accel/cone/kd_cone_traversal.cpp) step for step, so both
+// renderers give the same count/id/t buffers and node/triangle counts. Needs
+// a current GL context.
+
+#include <span>
+
+#include "accel/kd/kd_tree.h"
+#include "render/cone_tracer.h"
+
+namespace passtrace {
+
+struct GpuConeConfig {
+  int loopLimit = 64;  // -l: node visits per pass; the state resumes across passes
+  // Distinct triangles a cone's list holds with --cone-max 0; a cone meeting
+  // more is a one-line error (never a silently short count). With --cone-max
+  // N the list holds N.
+  uint32_t capacity = 1024;
+};
+
+inline constexpr uint32_t kGpuConeCapacity = 1024;
+
+// Throws std::runtime_error (one line) when a list overflows, --cone-max
+// exceeds the capacity, or the per-cone records do not fit.
+ConeFrame traceConesGpu(const KdTree& tree, std::span<const Triangle> tris, const CameraBasis& camera,
+                        float halfAngle, const ConeQueryConfig& config, const GpuConeConfig& gpu);
+
+}  // namespace passtrace
