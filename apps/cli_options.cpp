@@ -156,6 +156,9 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
                  "with --cone, kk-bvh: stack (nearer child first) or sorted (nodes by nearest axis distance, stop "
                  "at the first beyond the n-th hit)")
       ->check(CLI::IsMember({"stack", "sorted"}))->capture_default_str();
+  app.add_option("--cone-capacity", o.coneCapacity,
+                 "with --cone, -r 2: distinct triangles each cone's list holds (more with --cone-max 0 is an error)")
+      ->check(CLI::Range(1u, 1u << 20))->capture_default_str();
   app.add_flag("--list", o.list, "list the renderers, structures and scenes (with --json: as JSON) and exit");
   app.add_flag("--version", o.version, "print the version and exit");
   if (!helpFooter.empty()) app.footer(std::string(helpFooter));
@@ -185,6 +188,7 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
   if (app.count("--fov")) o.fov = fov;
   o.coneMaxGiven = app.count("--cone-max") > 0;
   if (app.count("--cone-nodes") && !o.cone) throw std::runtime_error("--cone-nodes needs --cone");
+  if (app.count("--cone-capacity") && !o.cone) throw std::runtime_error("--cone-capacity needs --cone");
   if (o.quiet && o.progress) throw std::runtime_error("--quiet and --progress contradict each other");
   if (app.count("--json") && o.json.empty() && !o.list) throw std::runtime_error("--json: needs a file name");
   o.listJson = o.list && app.count("--json") > 0;

@@ -76,6 +76,7 @@ struct Options {
   std::string coneHits;             // --cone-hits FILE.exr: count, id (uint32), t (float)
   bool coneMaxGiven = false;
   std::string coneNodes = "stack";  // --cone-nodes: the BVH's stack or node-sorted cone traversal
+  uint32_t coneCapacity = 1024;     // --cone-capacity N: -r 2's list of distinct triangles per cone
 };
 
 // Parses argv. Returns 0 with `options` filled, -1 when --help was printed

@@ -66,6 +66,7 @@ RunSettings toRunSettings(const Options& o) {
     throw std::runtime_error(std::string(o.coneMaxGiven ? "--cone-max" : "--cone-hits") + " needs --cone");
   s.cone = o.cone, s.coneMax = o.coneMax, s.coneHits = o.coneHits;
   s.coneSortedNodes = o.coneNodes == "sorted";
+  s.coneCapacity = o.coneCapacity;
   return s;
 }
 

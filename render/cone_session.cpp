@@ -1,35 +1,47 @@
 #include "render/cone_session.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
 #include <stdexcept>
 
 #include "render/atomic_file.h"
+#include "accel/kd/kd_structures.h"
 #include "render/cone_tracer.h"
+#include "render/gpu_cone_tracer.h"
 #include "render/heatmap.h"
 #include "render/image_output.h"
 
 namespace passtrace {
 namespace {
 
-std::string coneStructureNames() {
+// The structures with a cone query on the renderer (-r 1: Structure::cone,
+// -r 2: Structure::coneStream).
+bool hasCone(const Structure& s, RendererId renderer) {
+  return renderer == RendererId::Gpu ? s.coneStream != nullptr : s.cone != nullptr;
+}
+
+std::string coneStructureNames(RendererId renderer) {
   std::string names;
   for (const Structure& s : structures())
-    if (s.cone) names += (names.empty() ? "" : ", ") + std::string(s.name);
+    if (hasCone(s, renderer) && s.runsOn(renderer)) names += (names.empty() ? "" : ", ") + std::string(s.name);
   return names;
 }
 
 }  // namespace
 
 void checkConeRun(const RunSettings& o) {
-  if (o.renderer != RendererId::Cpu)
-    throw std::runtime_error("--cone: cone queries run on the CPU renderer (-r 1) only, with " + coneStructureNames());
+  if (o.renderer != RendererId::Cpu && o.renderer != RendererId::Gpu)
+    throw std::runtime_error("--cone: cone queries run on the CPU renderer (-r 1), with " +
+                             coneStructureNames(RendererId::Cpu) + ", and the stream path (-r 2), with " +
+                             coneStructureNames(RendererId::Gpu));
   const Structure& s = resolveStructure(o.structure, o.renderer);
-  if (!s.cone)
-    throw std::runtime_error("--cone: " + std::string(s.name) + " has no cone traversal (structures with one: " +
-                             coneStructureNames() + ")");
+  if (!hasCone(s, o.renderer))
+    throw std::runtime_error("--cone: " + std::string(s.name) + " has no cone traversal on the " +
+                             std::string(rendererTitle(o.renderer)) + " renderer (structures with one: " +
+                             coneStructureNames(o.renderer) + ")");
   if (o.frames > 0 || !o.exportPath.empty())
     throw std::runtime_error("--cone traces one frame: --frames and --export do not apply");
   if (!o.output.empty() || !o.hits.empty() || o.dumpImages)
@@ -45,7 +57,19 @@ void traceConeRun(const RunSettings& o, const Structure& structure, const Scene&
                   const std::vector<CameraSpec>& views, RunReport& report, Progress& progress) {
   progress.stage("building " + std::string(structure.name) + " for cones over " +
                  std::to_string(scene.triangles.size()) + " triangles");
-  const std::unique_ptr<ConeTraversal> traversal = structure.cone(scene.triangles, o.gpu.build);
+  const bool stream = o.renderer == RendererId::Gpu;
+  std::unique_ptr<ConeTraversal> traversal;
+  KdTree tree;
+  AccelStats stats;
+  if (stream) {
+    const auto start = std::chrono::steady_clock::now();
+    tree = structure.coneStream(scene.triangles, o.gpu.build);
+    stats.name = std::string(structure.name);
+    setKdTreeStats(stats, tree);
+    stats.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  } else {
+    traversal = structure.cone(scene.triangles, o.gpu.build);
+  }
   const float halfAngle = float(double(*o.cone) * std::numbers::pi / 180.0);
   ConeQueryConfig config{o.coneMax};
   config.sortedNodes = o.coneSortedNodes;
@@ -63,7 +87,9 @@ void traceConeRun(const RunSettings& o, const Structure& structure, const Scene&
     ConeFrame best;
     for (int r = 0; r < o.repeats; ++r) {
       progress.frame(k * size_t(o.repeats) + size_t(r), views.size() * size_t(o.repeats));
-      ConeFrame frame = traceCones(*traversal, camera, halfAngle, config, o.threads);
+      ConeFrame frame = stream ? traceConesGpu(tree, scene.triangles, camera, halfAngle, config,
+                                               GpuConeConfig{o.gpu.loopLimit, o.coneCapacity})
+                               : traceCones(*traversal, camera, halfAngle, config, o.threads);
       if (r == 0 || frame.ms < best.ms) best = std::move(frame);
     }
     report.frames.push_back({k, best.ms, uint64_t(best.hits.size()), 0});
@@ -80,7 +106,7 @@ void traceConeRun(const RunSettings& o, const Structure& structure, const Scene&
   const double cones = double(views.size()) * double(o.width) * double(o.height);
   cone.nodesMean = nodes / cones, cone.trianglesMean = triangles / cones, cone.metMean = met / cones;
   report.cone = cone;
-  report.structure = traversal->stats();
+  report.structure = stream ? stats : traversal->stats();
   const double n = double(views.size());
   report.rays = cones / n;  // cones per frame
   report.frameMs = sumMs / n;

@@ -101,10 +101,14 @@ ConeFrame traceConesGpu(const KdTree& tree, std::span<const Triangle> tris, cons
   kernel.set("uNodeBase", nodeBase);
   kernel.set("uRefBase", refBase);
   kernel.set("uTriBase", triBase);
-  kernel.set("uLoopLimit", gpu.loopLimit);
   stream.enable();
   stream.setWriteSurfaces({0});
   stream.clearDepth(1.0f);
+  // Untimed: llvmpipe compiles a kernel on its first draw. With no steps the
+  // pass only starts each cone (root box), a state the next pass resumes.
+  kernel.set("uLoopLimit", 0);
+  kernel.execute();
+  kernel.set("uLoopLimit", gpu.loopLimit);
   glFinish();
   const auto start = std::chrono::steady_clock::now();
   while (kernel.execute(true) > 0) {
@@ -124,7 +128,7 @@ ConeFrame traceConesGpu(const KdTree& tree, std::span<const Triangle> tris, cons
     if (r[0] == 3.0f)
       throw std::runtime_error("--cone-max 0 on the stream path: the cone of pixel (" + std::to_string(e % width) +
                                ", " + std::to_string(e / width) + ") meets more than " + std::to_string(capacity) +
-                               " triangles, its list's capacity: use --cone-max N or -r 1");
+                               " triangles, its list's capacity: raise --cone-capacity, or use --cone-max N or -r 1");
     const uint32_t count = std::bit_cast<uint32_t>(r[5]);
     const float* hits = r + 8 + 3 * stackSize;
     frame.hits[e] = count == 0 ? ConeHitRecord{0, kNoHit, kInfinity}

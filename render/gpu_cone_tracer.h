@@ -20,8 +20,6 @@ struct GpuConeConfig {
   uint32_t capacity = 1024;
 };
 
-inline constexpr uint32_t kGpuConeCapacity = 1024;
-
 // Throws std::runtime_error (one line) when a list overflows, --cone-max
 // exceeds the capacity, or the per-cone records do not fit.
 ConeFrame traceConesGpu(const KdTree& tree, std::span<const Triangle> tris, const CameraBasis& camera,

@@ -47,6 +47,7 @@ struct RunSettings {
   uint32_t coneMax = 0;       // --cone-max: 0 = every triangle met
   std::string coneHits;       // --cone-hits FILE.exr
   bool coneSortedNodes = false;  // --cone-nodes sorted (ConeQueryConfig::sortedNodes)
+  uint32_t coneCapacity = 1024;  // --cone-capacity: -r 2's per-cone list (GpuConeConfig::capacity)
 };
 
 // Throws std::runtime_error (or a subclass) with a one-line message on any

@@ -10,6 +10,7 @@
 
 #include "accel/cone/cone_hit_list.h"
 #include "accel/cpu_accelerator.h"
+#include "accel/kd/kd_tree.h"
 
 namespace passtrace {
 
@@ -23,6 +24,11 @@ class ConeTraversal {
 };
 
 using ConeFactory = std::unique_ptr<ConeTraversal> (*)(std::span<const Triangle>, const AccelBuildConfig&);
+
+// The stream path's cone query (render/gpu_cone_tracer.h, kernels_glsl/cone/)
+// walks a kd-tree texelized from this build: a stream row whose tree is the
+// CPU kd-tree's (buildKdTreeFor) registers it.
+using ConeStreamTree = KdTree (*)(std::span<const Triangle>, const AccelBuildConfig&);
 
 std::unique_ptr<ConeTraversal> makeBruteForceCone(std::span<const Triangle> tris);
 // "kd-tree" (SAH, the row's -e/-d/--kd-builder/--kd-termination) and "kd-pbrt".

@@ -2,6 +2,7 @@
 // on the bunny at 128^2 (0.5 degrees; 2.5 degrees and Kitchen are in
 // tests/slow/cone_bart_test.cpp), the JSON's cone statistics, and the bad
 // values' one-line errors.
+#include <filesystem>
 #include <fstream>
 
 #include <gtest/gtest.h>
@@ -67,6 +68,29 @@ TEST_F(Cli, ConeBadValuesAreOneLineErrors) {
   expectOneLineError(run("-s cornell -r 1 -w 8 -a kd-tree --cone 1 -o " + path("c.png") + out), "-o");
   expectOneLineError(run("-s cornell -r 1 -w 8 -a kk-bvh --cone 1 --cone-nodes heap" + out), "--cone-nodes");
   expectOneLineError(run("-s cornell -r 1 -w 8 -a kk-bvh --cone-nodes sorted" + out), "--cone-nodes");
+}
+
+// The stream path (-r 2, kd-stack's tree = kd-tree's) gives the CPU's buffers
+// exactly, and the same nodes and triangles per pixel; a list that overflows
+// --cone-capacity is a one-line error.
+TEST_F(Cli, ConeStreamPathEqualsCpuOnTheBunny) {
+  const std::string cpu = path("cpu.exr"), gpu = path("gpu.exr");
+  RunResult r = run("-s bunny -r 1 -w 64 --cone 0.5 -a kd-tree --cone-hits " + cpu + " --json " + path("cpu.json"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run("-s bunny -r 2 -w 64 -l 3 --cone 0.5 -a kd-stack --cone-hits " + gpu + " --json " + path("gpu.json"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  test::expectConeBuffersEqual(cpu, gpu, 64);
+  const nlohmann::json a = nlohmann::json::parse(std::ifstream(path("cpu.json")));
+  const nlohmann::json b = nlohmann::json::parse(std::ifstream(path("gpu.json")));
+  EXPECT_EQ(a["cone"]["nodes_per_pixel"], b["cone"]["nodes_per_pixel"]);
+  EXPECT_EQ(a["cone"]["triangles_per_pixel"], b["cone"]["triangles_per_pixel"]);
+  EXPECT_EQ(a["cone"]["met_per_pixel"], b["cone"]["met_per_pixel"]);
+  for (const char* f : {"cpu.exr", "gpu.exr", "cpu.json", "gpu.json"}) std::filesystem::remove(path(f));
+  expectOneLineError(run("-s cornell -r 2 -w 8 -a kd-stack --cone 30 --cone-capacity 1 --cone-hits " + gpu),
+                     "--cone-capacity");
+  expectOneLineError(run("-s cornell -r 2 -w 8 -a kd-stack --cone 30 --cone-max 5 --cone-capacity 4 --cone-hits " +
+                         gpu), "--cone-max");
+  expectOneLineError(run("-s cornell -r 1 -w 8 -a kd-tree --cone-capacity 4"), "--cone-capacity");
 }
 
 }  // namespace
