@@ -19,6 +19,10 @@ APERTURES = ["0.04", "0.5", "1.5", "2.5", "5"]
 RAY_FACTORS = [2, 4, 8]  # side multipliers: 4, 16, 64 rays per base pixel
 STRUCTURES = [("BVH", "kk-bvh"), ("k-d tree", "kd-tree")]
 SCENES = ["bunny", "cornell", "cows", "kitchen", "robots"]
+# The stream path (-r 2 -a kd-stack: the kd-tree's tree through kernels_glsl/cone/), the narrower
+# apertures only (llvmpipe: wide cones take minutes); its nodes and triangles must equal the CPU's.
+GPU_APERTURES = ["0.04", "0.5", "1.5"]
+GPU_LABEL = "k-d tree, stream path"
 
 # The seed's Table 1 (GTX 1080, 1024^2): ms, nodes, triangles per pixel.
 SEED = {
@@ -61,6 +65,13 @@ def build_jobs(size, repeats, scenes, bart_ok, out):
                 meta = {"key": key, "scene": scene, "structure": structure, "label": label, "kind": kind,
                         "value": value, "size": size}
                 jobs.append(("cones", meta, args, key))
+        for value in GPU_APERTURES:
+            key = f"{scene}-kd-stack-gpu-cone-{value}"
+            args = ["-s", scene, "-r", "2", "-a", "kd-stack", "-m", str(repeats), "-w", str(size), "--cone", value,
+                    "--cone-capacity", "8192"]
+            meta = {"key": key, "scene": scene, "structure": "kd-stack", "label": GPU_LABEL, "kind": "cone",
+                    "value": value, "size": size}
+            jobs.append(("cones", meta, args, key))
     return jobs, skipped
 
 
@@ -144,6 +155,20 @@ def write_report(out, results, records, scenes, size):
                   "the seed counted them without intersecting, here each distinct one gets the exact cone/triangle "
                   "test, so the kd-tree's time carries that cost (the seed's own caveat, its section 5). The "
                   "BVH here has one triangle per leaf (Kay/Kajiya), the seed's SBVH up to 8.", ""]
+    gpu_rows = []
+    for scene in scenes:
+        for value in GPU_APERTURES:
+            g, c = got.get((scene, GPU_LABEL, value)), got.get((scene, "k-d tree", value))
+            if g:
+                same = "yes" if c and (g[1], g[2]) == (c[1], c[2]) else "no"
+                gpu_rows.append(f"| {scene} -r 2 | {value}° | {num(g[0])} | {num(c[0]) if c else '–'} | {num(g[1])} | "
+                                f"{num(g[2])} | {same} |")
+    if gpu_rows:
+        lines += ["## The stream path", "", "`-r 2 -a kd-stack --cone DEG --cone-max 0`: the kd-tree's cone query as a "
+                  "stream kernel on llvmpipe (the same tree, per-cone stack and sorted list in a storage buffer), "
+                  "beside the CPU's kd-tree; nodes and triangles per pixel must be the CPU's exactly.", "",
+                  "| run | cone | ms (-r 2) | ms (-r 1) | nodes/px | triangles/px | counts equal the CPU's |",
+                  "|---|---|---|---|---|---|---|"] + gpu_rows + [""]
     failed = [(m["key"], r.get("error")) for m, r in records if r and r.get("status") == "error"]
     if failed:
         lines += ["## Failed runs", ""] + [f"- `{k}`: {e}" for k, e in failed] + [""]
