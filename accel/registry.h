@@ -110,7 +110,7 @@ struct Structure {
   // --cone: the structure's cone query on the CPU renderer (accel/cone/); null = none.
   ConeFactory cone = nullptr;
   // --cone with -r 2: the kd-tree the stream cone kernel walks (render/gpu_cone_tracer.h); null = none.
-  ConeStreamTree coneStream = nullptr;
+  ConeStreamFactory coneStream = nullptr;
 
   bool runsOn(RendererId r) const { return renderers.has(r); }
   // The parameters a run of this structure on `renderer` reads.

@@ -1,14 +1,12 @@
 #include "render/cone_session.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
 #include <stdexcept>
 
 #include "render/atomic_file.h"
-#include "accel/kd/kd_structures.h"
 #include "render/cone_tracer.h"
 #include "render/gpu_cone_tracer.h"
 #include "render/heatmap.h"
@@ -59,14 +57,9 @@ void traceConeRun(const RunSettings& o, const Structure& structure, const Scene&
                  std::to_string(scene.triangles.size()) + " triangles");
   const bool stream = o.renderer == RendererId::Gpu;
   std::unique_ptr<ConeTraversal> traversal;
-  KdTree tree;
-  AccelStats stats;
+  ConeStreamTree tree;
   if (stream) {
-    const auto start = std::chrono::steady_clock::now();
     tree = structure.coneStream(scene.triangles, o.gpu.build);
-    stats.name = std::string(structure.name);
-    setKdTreeStats(stats, tree);
-    stats.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   } else {
     traversal = structure.cone(scene.triangles, o.gpu.build);
   }
@@ -87,7 +80,7 @@ void traceConeRun(const RunSettings& o, const Structure& structure, const Scene&
     ConeFrame best;
     for (int r = 0; r < o.repeats; ++r) {
       progress.frame(k * size_t(o.repeats) + size_t(r), views.size() * size_t(o.repeats));
-      ConeFrame frame = stream ? traceConesGpu(tree, scene.triangles, camera, halfAngle, config,
+      ConeFrame frame = stream ? traceConesGpu(tree, camera, halfAngle, config,
                                                GpuConeConfig{o.gpu.loopLimit, o.coneCapacity})
                                : traceCones(*traversal, camera, halfAngle, config, o.threads);
       if (r == 0 || frame.ms < best.ms) best = std::move(frame);
@@ -106,7 +99,7 @@ void traceConeRun(const RunSettings& o, const Structure& structure, const Scene&
   const double cones = double(views.size()) * double(o.width) * double(o.height);
   cone.nodesMean = nodes / cones, cone.trianglesMean = triangles / cones, cone.metMean = met / cones;
   report.cone = cone;
-  report.structure = stream ? stats : traversal->stats();
+  report.structure = stream ? tree.stats : traversal->stats();
   const double n = double(views.size());
   report.rays = cones / n;  // cones per frame
   report.frameMs = sumMs / n;

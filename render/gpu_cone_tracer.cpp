@@ -23,31 +23,9 @@ void pushDouble(std::vector<float>& out, double d) {
   out.push_back(bits(uint32_t(b >> 32)));
 }
 
-// The tree buffer of kd_cone.frag: root box, nodes, references, triangles.
-std::vector<float> treeBuffer(const KdTree& tree, std::span<const Triangle> tris, uint32_t& nodeBase,
-                              uint32_t& refBase, uint32_t& triBase) {
-  std::vector<float> out;
-  for (int a = 0; a < 3; ++a) out.push_back(tree.bounds.min[a]);
-  for (int a = 0; a < 3; ++a) out.push_back(tree.bounds.max[a]);
-  nodeBase = uint32_t(out.size());
-  for (const KdNode& n : tree.nodes) {
-    out.push_back(n.split);
-    out.push_back(bits(n.axis));
-    out.push_back(bits(n.rightChild));
-    out.push_back(bits(n.firstRef));
-    out.push_back(bits(n.refCount));
-  }
-  refBase = uint32_t(out.size());
-  for (uint32_t r : tree.references) out.push_back(bits(r));
-  triBase = uint32_t(out.size());
-  for (const Triangle& t : tris)
-    for (const glm::vec3& p : {t.v0, t.v1, t.v2}) out.insert(out.end(), {p.x, p.y, p.z});
-  return out;
-}
-
 }  // namespace
 
-ConeFrame traceConesGpu(const KdTree& tree, std::span<const Triangle> tris, const CameraBasis& camera,
+ConeFrame traceConesGpu(const ConeStreamTree& tree, const CameraBasis& camera,
                         float halfAngle, const ConeQueryConfig& config, const GpuConeConfig& gpu) {
   if (config.maxHits > gpu.capacity)
     throw std::runtime_error("--cone-max " + std::to_string(config.maxHits) + ": the stream path keeps at most " +
@@ -58,7 +36,7 @@ ConeFrame traceConesGpu(const KdTree& tree, std::span<const Triangle> tris, cons
   InOutStream::checkSize(width, height);
   const uint64_t elements = uint64_t(width) * uint64_t(height);
   const uint32_t capacity = config.maxHits > 0 ? config.maxHits : gpu.capacity;
-  const uint32_t stackSize = tree.depth() + 1;  // at most one push per level
+  const uint32_t stackSize = tree.stackSize;
   const uint64_t stride = 8 + 3 * uint64_t(stackSize) + 2 * uint64_t(capacity);
   constexpr uint64_t kMaxRecordFloats = uint64_t(1) << 30;  // 4 GiB
   if (elements * stride > kMaxRecordFloats)
@@ -82,14 +60,13 @@ ConeFrame traceConesGpu(const KdTree& tree, std::span<const Triangle> tris, cons
                                  k.y, k.z, 0.0f});
       for (int a = 0; a < 3; ++a) pushDouble(cones, v[a]);
     }
-  uint32_t nodeBase = 0, refBase = 0, triBase = 0;
-  StorageBuffer treeData("cone kd-tree"), coneData("cones"), records("cone records (stacks and hit lists)");
-  treeData.upload(treeBuffer(tree, tris, nodeBase, refBase, triBase));
+  StorageBuffer treeData("cone tree"), coneData("cones"), records("cone records (stacks and hit lists)");
+  treeData.upload(tree.data);
   coneData.upload(cones);
   records.reserve(elements * stride);
 
   InOutStream stream(width, height, 1);
-  StreamKernel kernel("kd-cone", "cone/kd_cone.frag");
+  StreamKernel kernel("cone", tree.kernel);
   kernel.bindStorage(0, records);
   kernel.bindStorage(1, treeData);
   kernel.bindStorage(2, coneData);
@@ -97,10 +74,10 @@ ConeFrame traceConesGpu(const KdTree& tree, std::span<const Triangle> tris, cons
   kernel.set("uStackSize", stackSize);
   kernel.set("uCapacity", capacity);
   kernel.set("uMaxHits", config.maxHits);
-  kernel.set("uNodeCount", uint32_t(tree.nodes.size()));
-  kernel.set("uNodeBase", nodeBase);
-  kernel.set("uRefBase", refBase);
-  kernel.set("uTriBase", triBase);
+  kernel.set("uNodeCount", tree.nodeCount);
+  kernel.set("uNodeBase", tree.nodeBase);
+  kernel.set("uRefBase", tree.refBase);
+  kernel.set("uTriBase", tree.triBase);
   stream.enable();
   stream.setWriteSurfaces({0});
   stream.clearDepth(1.0f);

@@ -1,13 +1,13 @@
 #pragma once
 // Cone queries on the stream path (-r 2 --cone): one cone per pixel through
-// the kd-tree's cone kernel (kernels_glsl/cone/kd_cone.frag), the GPU twin of
-// KdConeTraversal (accel/cone/kd_cone_traversal.cpp) step for step, so both
+// a structure's cone kernel (kernels_glsl/cone/: kd_cone.frag, bvh_cone.frag),
+// the GPU twins of accel/cone/kd_cone_traversal.cpp and bvh_cone_traversal.cpp
+// step for step, so both
 // renderers give the same count/id/t buffers and node/triangle counts. Needs
 // a current GL context.
 
 #include <span>
 
-#include "accel/kd/kd_tree.h"
 #include "render/cone_tracer.h"
 
 namespace passtrace {
@@ -22,7 +22,7 @@ struct GpuConeConfig {
 
 // Throws std::runtime_error (one line) when a list overflows, --cone-max
 // exceeds the capacity, or the per-cone records do not fit.
-ConeFrame traceConesGpu(const KdTree& tree, std::span<const Triangle> tris, const CameraBasis& camera,
+ConeFrame traceConesGpu(const ConeStreamTree& tree, const CameraBasis& camera,
                         float halfAngle, const ConeQueryConfig& config, const GpuConeConfig& gpu);
 
 }  // namespace passtrace

@@ -5,6 +5,7 @@
 // culled on pop. The Kay/Kajiya tree of "kk-bvh"; its escape sequence
 // cannot serve a cone, which needs both children of a node.
 #include <algorithm>
+#include <bit>
 #include <chrono>
 
 #include "accel/bvh/bvh_structures.h"
@@ -78,7 +79,35 @@ class BvhConeTraversal final : public ConeTraversal {
   AccelStats stats_;
 };
 
+float bits(uint32_t u) { return std::bit_cast<float>(u); }
+
 }  // namespace
+
+ConeStreamTree makeKkBvhStreamCone(std::span<const Triangle> tris, const AccelBuildConfig& config) {
+  const auto start = std::chrono::steady_clock::now();
+  const Bvh bvh = buildKayKajiya(tris, config.kayKajiya);
+  ConeStreamTree out;
+  out.kernel = "cone/bvh_cone.frag";
+  out.stats = bvhStats("kk-bvh", bvh);
+  std::vector<float>& d = out.data;
+  out.nodeBase = 0;
+  uint32_t widest = 1;
+  for (const BvhNode& n : bvh.nodes) {
+    d.insert(d.end(), {n.box.min.x, n.box.min.y, n.box.min.z, n.box.max.x, n.box.max.y, n.box.max.z,
+                       bits(n.triangle), bits(n.firstChild), bits(n.childCount)});
+    widest = std::max(widest, n.childCount);
+  }
+  out.refBase = uint32_t(d.size());
+  for (uint32_t c : bvh.children) d.push_back(bits(c));
+  out.triBase = uint32_t(d.size());
+  for (const Triangle& t : tris)
+    for (const glm::vec3& p : {t.v0, t.v1, t.v2}) d.insert(d.end(), {p.x, p.y, p.z});
+  out.nodeCount = uint32_t(bvh.nodes.size());
+  // A visit pops one entry and pushes at most `widest`: per level at most widest - 1 more.
+  out.stackSize = bvh.depth() * widest + 1;
+  out.stats.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
 
 std::unique_ptr<ConeTraversal> makeKkBvhCone(std::span<const Triangle> tris, const AccelBuildConfig& config) {
   const auto start = std::chrono::steady_clock::now();

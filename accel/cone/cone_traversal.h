@@ -10,7 +10,6 @@
 
 #include "accel/cone/cone_hit_list.h"
 #include "accel/cpu_accelerator.h"
-#include "accel/kd/kd_tree.h"
 
 namespace passtrace {
 
@@ -25,10 +24,21 @@ class ConeTraversal {
 
 using ConeFactory = std::unique_ptr<ConeTraversal> (*)(std::span<const Triangle>, const AccelBuildConfig&);
 
-// The stream path's cone query (render/gpu_cone_tracer.h, kernels_glsl/cone/)
-// walks a kd-tree texelized from this build: a stream row whose tree is the
-// CPU kd-tree's (buildKdTreeFor) registers it.
-using ConeStreamTree = KdTree (*)(std::span<const Triangle>, const AccelBuildConfig&);
+// A tree as the stream path's cone kernel reads it (render/gpu_cone_tracer.h):
+// the kernel (a kernels_glsl/ file), its ConeTree buffer (layout in the
+// kernel's header) and where the parts start, the stack entries a cone can
+// need, and the build's stats. The kd-tree's (kd_cone.frag, the tree of
+// buildKdTreeFor) and kk-bvh's (bvh_cone.frag) are the CPU rows' trees.
+struct ConeStreamTree {
+  const char* kernel = "";
+  std::vector<float> data;
+  uint32_t nodeCount = 0, nodeBase = 0, refBase = 0, triBase = 0;
+  uint32_t stackSize = 1;
+  AccelStats stats;
+};
+using ConeStreamFactory = ConeStreamTree (*)(std::span<const Triangle>, const AccelBuildConfig&);
+ConeStreamTree makeKdTreeStreamCone(std::span<const Triangle> tris, const AccelBuildConfig& config);
+ConeStreamTree makeKkBvhStreamCone(std::span<const Triangle> tris, const AccelBuildConfig& config);
 
 std::unique_ptr<ConeTraversal> makeBruteForceCone(std::span<const Triangle> tris);
 // "kd-tree" (SAH, the row's -e/-d/--kd-builder/--kd-termination) and "kd-pbrt".

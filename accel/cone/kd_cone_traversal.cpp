@@ -4,6 +4,7 @@
 // non-empty child is entered, the other pushed with its own interval.
 // Nodes that start beyond the hit list's cut-off are culled (Listing 1's
 // "max(t1, tmin) <= t_n"), on push and on pop.
+#include <bit>
 #include <chrono>
 
 #include "accel/cone/cone_traversal.h"
@@ -97,7 +98,33 @@ KdTree pbrtTree(std::span<const Triangle> tris, const AccelBuildConfig& config) 
   return buildKdTreePbrt(tris, kdPbrtConfigFor(config));
 }
 
+float bits(uint32_t u) { return std::bit_cast<float>(u); }
+
 }  // namespace
+
+ConeStreamTree makeKdTreeStreamCone(std::span<const Triangle> tris, const AccelBuildConfig& config) {
+  const auto start = std::chrono::steady_clock::now();
+  const KdTree tree = buildKdTreeFor(tris, config);
+  ConeStreamTree out;
+  out.kernel = "cone/kd_cone.frag";
+  out.stats.name = "kd-tree";
+  setKdTreeStats(out.stats, tree);
+  std::vector<float>& d = out.data;
+  for (int a = 0; a < 3; ++a) d.push_back(tree.bounds.min[a]);
+  for (int a = 0; a < 3; ++a) d.push_back(tree.bounds.max[a]);
+  out.nodeBase = uint32_t(d.size());
+  for (const KdNode& n : tree.nodes) d.insert(d.end(), {n.split, bits(n.axis), bits(n.rightChild), bits(n.firstRef),
+                                                         bits(n.refCount)});
+  out.refBase = uint32_t(d.size());
+  for (uint32_t r : tree.references) d.push_back(bits(r));
+  out.triBase = uint32_t(d.size());
+  for (const Triangle& t : tris)
+    for (const glm::vec3& p : {t.v0, t.v1, t.v2}) d.insert(d.end(), {p.x, p.y, p.z});
+  out.nodeCount = uint32_t(tree.nodes.size());
+  out.stackSize = tree.depth() + 1;  // at most one push per level
+  out.stats.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
 
 std::unique_ptr<ConeTraversal> makeKdTreeCone(std::span<const Triangle> tris, const AccelBuildConfig& config) {
   return make("kd-tree", tris, buildKdTreeFor, config);

@@ -1,5 +1,5 @@
-// The stream path's cone query (kernels_glsl/cone/kd_cone.frag) against the
-// CPU's (KdConeTraversal): the same count, nearest id and t on every pixel
+// The stream path's cone queries (kernels_glsl/cone/kd_cone.frag and
+// bvh_cone.frag) against the CPU's (KdConeTraversal, BvhConeTraversal): the same count, nearest id and t on every pixel
 // and the same nodes and triangle references per cone, at loop limits 3 and
 // 64 (the state resumes across passes), with and without --cone-max.
 #include <cmath>
@@ -9,7 +9,6 @@
 #include <gtest/gtest.h>
 
 #include "accel/cone/cone_traversal.h"
-#include "accel/kd/kd_structures.h"
 #include "render/gpu_cone_tracer.h"
 #include "tests/gl_test_support.h"
 #include "tests/test_meshes.h"
@@ -33,6 +32,7 @@ CameraBasis coneCamera(int size) {
 }
 
 struct GpuConeCase {
+  bool bvh;  // kk-bvh's tree (bvh_cone.frag), else the kd-tree's (kd_cone.frag)
   float degrees;
   uint32_t maxHits;
   int loopLimit;
@@ -47,9 +47,10 @@ TEST_P(GpuCone, SameBuffersAsCpu) {
   const CameraBasis camera = coneCamera(20);
   const float halfAngle = float(double(c.degrees) * std::numbers::pi / 180.0);
   ConeQueryConfig config{c.maxHits};
-  const ConeFrame cpu = traceCones(*makeKdTreeCone(tris, build), camera, halfAngle, config, 1);
-  const ConeFrame gpu = traceConesGpu(buildKdTreeFor(tris, build), tris, camera, halfAngle, config,
-                                      GpuConeConfig{c.loopLimit});
+  const ConeFrame cpu = traceCones(c.bvh ? *makeKkBvhCone(tris, build) : *makeKdTreeCone(tris, build), camera,
+                                   halfAngle, config, 1);
+  const ConeFrame gpu = traceConesGpu(c.bvh ? makeKkBvhStreamCone(tris, build) : makeKdTreeStreamCone(tris, build),
+                                      camera, halfAngle, config, GpuConeConfig{c.loopLimit});
   ASSERT_EQ(gpu.hits.size(), cpu.hits.size());
   size_t met = 0, several = 0;
   for (size_t i = 0; i < cpu.hits.size(); ++i) {
@@ -66,21 +67,23 @@ TEST_P(GpuCone, SameBuffersAsCpu) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Cones, GpuCone,
-                         ::testing::Values(GpuConeCase{0.5f, 0, 3}, GpuConeCase{0.5f, 0, 64},
-                                           GpuConeCase{2.5f, 0, 3}, GpuConeCase{2.5f, 0, 64},
-                                           GpuConeCase{2.5f, 3, 3}, GpuConeCase{5.0f, 2, 64}),
+                         ::testing::Values(GpuConeCase{false, 0.5f, 0, 3}, GpuConeCase{false, 0.5f, 0, 64},
+                                           GpuConeCase{false, 2.5f, 0, 3}, GpuConeCase{false, 2.5f, 0, 64},
+                                           GpuConeCase{false, 2.5f, 3, 3}, GpuConeCase{false, 5.0f, 2, 64},
+                                           GpuConeCase{true, 0.5f, 0, 3}, GpuConeCase{true, 2.5f, 0, 64},
+                                           GpuConeCase{true, 2.5f, 3, 3}, GpuConeCase{true, 5.0f, 2, 64}),
                          [](const auto& info) {
-                           return "deg" + std::to_string(int(info.param.degrees * 10)) + "_max" +
+                           return std::string(info.param.bvh ? "kkbvh" : "kd") + "_deg" + std::to_string(int(info.param.degrees * 10)) + "_max" +
                                   std::to_string(info.param.maxHits) + "_l" + std::to_string(info.param.loopLimit);
                          });
 
 TEST_F(GlTest, GpuConeListOverflowIsAnError) {
   const std::vector<Triangle> tris = coneMesh();
   const float halfAngle = float(10.0 * std::numbers::pi / 180.0);
-  const KdTree tree = buildKdTreeFor(tris, AccelBuildConfig{});
-  EXPECT_THROW(traceConesGpu(tree, tris, coneCamera(4), halfAngle, ConeQueryConfig{0}, GpuConeConfig{64, 4}),
+  const ConeStreamTree tree = makeKdTreeStreamCone(tris, AccelBuildConfig{});
+  EXPECT_THROW(traceConesGpu(tree, coneCamera(4), halfAngle, ConeQueryConfig{0}, GpuConeConfig{64, 4}),
                std::runtime_error);
-  EXPECT_THROW(traceConesGpu(tree, tris, coneCamera(4), halfAngle, ConeQueryConfig{5}, GpuConeConfig{64, 4}),
+  EXPECT_THROW(traceConesGpu(tree, coneCamera(4), halfAngle, ConeQueryConfig{5}, GpuConeConfig{64, 4}),
                std::runtime_error);
 }
 
