@@ -66,8 +66,9 @@ void traceConeRun(const RunSettings& o, const Structure& structure, const Scene&
   const float halfAngle = float(double(*o.cone) * std::numbers::pi / 180.0);
   ConeQueryConfig config{o.coneMax};
   config.sortedNodes = o.coneSortedNodes;
-  if (config.sortedNodes && structure.family != "bvh") {
-    report.warnings.push_back("--cone-nodes is not read by " + std::string(structure.name) + " (ignored)");
+  if (config.sortedNodes && (structure.family != "bvh" || stream)) {
+    report.warnings.push_back("--cone-nodes is not read by " + std::string(structure.name) +
+                              (stream ? " on the stream path (stack traversal; ignored)" : " (ignored)"));
     progress.warn(report.warnings.back());
   }
   ConeFrame first;
