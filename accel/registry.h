@@ -14,6 +14,7 @@
 #include <string_view>
 #include <vector>
 
+#include "accel/cone/cone_traversal.h"
 #include "accel/cpu_accelerator.h"
 #include "accel/gpu_traversal.h"
 
@@ -114,6 +115,10 @@ struct Structure {
   // DACRT). True: the CPU traversal (-r 1) counts one step per node or cell
   // visited and tests a leaf's triangles inside that step, so node tests = steps.
   bool cpuStepsVisitNodes = false;
+  // --cone: the structure's cone query on the CPU renderer (accel/cone/); null = none.
+  ConeFactory cone = nullptr;
+  // --cone with -r 2: the kd-tree the stream cone kernel walks (render/gpu_cone_tracer.h); null = none.
+  ConeStreamFactory coneStream = nullptr;
 
   bool runsOn(RendererId r) const { return renderers.has(r); }
   // The parameters a run of this structure on `renderer` reads.

@@ -159,6 +159,21 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
   app.add_option("--ao-distance", aoDistance,
                  "--shading ao: the AO rays' length in scene units (default: 0.1 x the scene's box diagonal)")
       ->check(CLI::PositiveNumber);
+  app.add_option("--cone", o.cone,
+                 "trace one cone per pixel instead of rays: axis through the pixel centre, half-angle DEG degrees "
+                 "(0 <= DEG < 90); structures with a cone traversal only");
+  app.add_option("--cone-max", o.coneMax, "with --cone: keep the N nearest triangles per cone (0: every one met)")
+      ->check(CLI::Range(0u, 1u << 30))->capture_default_str();
+  app.add_option("--cone-hits", o.coneHits,
+                 "with --cone: write per pixel count (uint32: distinct triangles met, capped by --cone-max), id "
+                 "(uint32: the nearest one's index, 4294967295 for none) and t (float: its axis distance) as OpenEXR");
+  app.add_option("--cone-nodes", o.coneNodes,
+                 "with --cone, kk-bvh: stack (nearer child first) or sorted (nodes by nearest axis distance, stop "
+                 "at the first beyond the n-th hit)")
+      ->check(CLI::IsMember({"stack", "sorted"}))->capture_default_str();
+  app.add_option("--cone-capacity", o.coneCapacity,
+                 "with --cone, -r 2: distinct triangles each cone's list holds (more with --cone-max 0 is an error)")
+      ->check(CLI::Range(1u, 1u << 20))->capture_default_str();
   app.add_flag("--list", o.list, "list the renderers, structures and scenes (with --json: as JSON) and exit");
   app.add_flag("--version", o.version, "print the version and exit");
   if (!helpFooter.empty()) app.footer(std::string(helpFooter));
@@ -190,6 +205,9 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
     if (!std::isfinite(aoDistance)) throw std::runtime_error("--ao-distance: not a finite positive length");
     o.aoDistance = aoDistance;
   }
+  o.coneMaxGiven = app.count("--cone-max") > 0;
+  if (app.count("--cone-nodes") && !o.cone) throw std::runtime_error("--cone-nodes needs --cone");
+  if (app.count("--cone-capacity") && !o.cone) throw std::runtime_error("--cone-capacity needs --cone");
   if (o.quiet && o.progress) throw std::runtime_error("--quiet and --progress contradict each other");
   if (app.count("--json") && o.json.empty() && !o.list) throw std::runtime_error("--json: needs a file name");
   o.listJson = o.list && app.count("--json") > 0;

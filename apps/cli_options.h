@@ -75,6 +75,12 @@ struct Options {
   // The build and traversal flags given, by long name ("--grid-multiplier"):
   // the run warns of those the chosen structure does not read.
   std::vector<std::string> givenFlags;
+  std::optional<float> cone;        // --cone DEG: one cone per pixel of this half-angle (accel/cone/)
+  uint32_t coneMax = 0;             // --cone-max N: nearest triangles kept per cone; 0 = all
+  std::string coneHits;             // --cone-hits FILE.exr: count, id (uint32), t (float)
+  bool coneMaxGiven = false;
+  std::string coneNodes = "stack";  // --cone-nodes: the BVH's stack or node-sorted cone traversal
+  uint32_t coneCapacity = 1024;     // --cone-capacity N: -r 2's list of distinct triangles per cone
 };
 
 // Parses argv. Returns 0 with `options` filled, -1 when --help was printed

@@ -65,6 +65,13 @@ RunSettings toRunSettings(const Options& o) {
   if (o.frames == 0 && std::count(s.givenParams.begin(), s.givenParams.end(), BuildParam::Dynamic))
     throw std::runtime_error("--dynamic chooses how a --frames sequence updates its structure: it needs --frames");
   s.stats = o.stats;
+  if (o.cone && !(*o.cone >= 0.0f && *o.cone < 90.0f))
+    throw std::runtime_error("--cone: the half-angle must be at least 0 and below 90 degrees");
+  if (!o.cone && (o.coneMaxGiven || !o.coneHits.empty()))
+    throw std::runtime_error(std::string(o.coneMaxGiven ? "--cone-max" : "--cone-hits") + " needs --cone");
+  s.cone = o.cone, s.coneMax = o.coneMax, s.coneHits = o.coneHits;
+  s.coneSortedNodes = o.coneNodes == "sorted";
+  s.coneCapacity = o.coneCapacity;
   return s;
 }
 

@@ -121,4 +121,43 @@ std::vector<HitRecord> readHitBuffer(const fs::path& path, int& width, int& heig
   return hits;
 }
 
+void writeConeHitBuffer(const fs::path& path, int width, int height, const std::vector<ConeHitRecord>& hits) {
+  if (lowerExtension(path) != ".exr") fail(path, "cone hit buffers are written as OpenEXR only (use .exr)");
+  checkSize(path, width, height, hits.size(), 1);
+  OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::FLOAT);
+  spec.channelnames = {"count", "id", "t"};
+  spec.channelformats = {OIIO::TypeDesc::UINT32, OIIO::TypeDesc::UINT32, OIIO::TypeDesc::FLOAT};
+  writeAtomically(path, spec, [&](OIIO::ImageOutput& out) {
+    return out.write_image(OIIO::TypeDesc::UNKNOWN, hits.data());  // already ConeHitRecord's per-channel layout
+  });
+}
+
+std::vector<ConeHitRecord> readConeHitBuffer(const fs::path& path, int& width, int& height) {
+  auto in = OIIO::ImageInput::open(path.string());
+  if (!in) fail(path, OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.depth != 1) fail(path, "not a 2D image");
+  struct Channel {
+    const char* name;
+    OIIO::TypeDesc type;
+    std::size_t offset;
+  };
+  const Channel channels[] = {{"count", OIIO::TypeDesc::UINT32, offsetof(ConeHitRecord, count)},
+                              {"id", OIIO::TypeDesc::UINT32, offsetof(ConeHitRecord, id)},
+                              {"t", OIIO::TypeDesc::FLOAT, offsetof(ConeHitRecord, t)}};
+  std::vector<ConeHitRecord> hits(static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height));
+  for (const Channel& channel : channels) {
+    const int index = spec.channelindex(channel.name);
+    if (index < 0) fail(path, std::string("no channel '") + channel.name + "'");
+    if (spec.channelformat(index) != channel.type)
+      fail(path, std::string("channel '") + channel.name + "' is " + spec.channelformat(index).c_str() + ", expected " +
+                     channel.type.c_str());
+    auto* first = reinterpret_cast<std::byte*>(hits.data()) + channel.offset;
+    if (!in->read_image(0, 0, index, index + 1, channel.type, first, sizeof(ConeHitRecord))) fail(path, in->geterror());
+  }
+  width = spec.width;
+  height = spec.height;
+  return hits;
+}
+
 }  // namespace passtrace

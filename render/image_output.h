@@ -33,4 +33,18 @@ void writeHitBuffer(const std::filesystem::path& path, int width, int height, co
 // Reads a hit buffer back by channel name; "id" must be stored as uint32.
 std::vector<HitRecord> readHitBuffer(const std::filesystem::path& path, int& width, int& height);
 
+// One pixel of a --cone-hits buffer: distinct triangles met (capped by
+// --cone-max), the nearest one's id (kNoHit for none) and its axis distance
+// (+inf for none).
+struct ConeHitRecord {
+  uint32_t count, id;
+  float t;
+};
+static_assert(sizeof(ConeHitRecord) == 12, "ConeHitRecord is written as OpenEXR's native pixel layout");
+
+// OpenEXR only: uint32 channels "count", "id" and a float32 channel "t".
+void writeConeHitBuffer(const std::filesystem::path& path, int width, int height,
+                        const std::vector<ConeHitRecord>& hits);
+std::vector<ConeHitRecord> readConeHitBuffer(const std::filesystem::path& path, int& width, int& height);
+
 }  // namespace passtrace

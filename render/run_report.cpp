@@ -84,6 +84,11 @@ nlohmann::json toJson(const RunReport& r) {
     j["static_build_ms"] = r.staticBuildMs;
   }
   // Only for DACRT: its work per frame, as the seed's Fig. 8 counts it.
+  if (r.cone)
+    j["cone"] = {{"half_angle_degrees", r.cone->degrees}, {"max_hits", r.cone->maxHits},
+                 {"nodes_per_pixel", r.cone->nodesMean},  {"nodes_per_pixel_max", r.cone->nodesMax},
+                 {"triangles_per_pixel", r.cone->trianglesMean}, {"triangles_per_pixel_max", r.cone->trianglesMax},
+                 {"met_per_pixel", r.cone->metMean},      {"met_per_pixel_max", r.cone->metMax}};
   if (r.dacrt)
     j["dacrt"] = {{"ray_box_tests", r.dacrt->rayBox},           {"cone_box_tests", r.dacrt->coneBox},
                   {"triangle_box_tests", r.dacrt->triangleBox}, {"ray_triangle_tests", r.dacrt->rayTriangle},
@@ -127,6 +132,11 @@ std::string summaryText(const RunReport& r, bool withStats) {
                      (unsigned long long)r.dacrt->rayBox, (unsigned long long)r.dacrt->coneBox,
                      (unsigned long long)r.dacrt->triangleBox, (unsigned long long)r.dacrt->rayTriangle,
                      (unsigned long long)r.dacrt->nodes);
+    if (r.cone)
+      text += format("per cone (%g degrees): %.2f nodes (max %llu), %.2f triangles met in leaves (max %llu), "
+                     "%.2f distinct triangles in the cone (max %llu)\n",
+                     r.cone->degrees, r.cone->nodesMean, (unsigned long long)r.cone->nodesMax, r.cone->trianglesMean,
+                     (unsigned long long)r.cone->trianglesMax, r.cone->metMean, (unsigned long long)r.cone->metMax);
   }
   text += format("%s: %zu triangles; %s renderer, %s (build %.1f ms, %.2f floats/triangle)%s%s\n", r.scene.c_str(),
                  r.triangles, r.renderer.c_str(), s.name.c_str(), s.buildMs, s.floatsPerTriangle,

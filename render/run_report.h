@@ -32,6 +32,14 @@ struct FrameReport {
   uint64_t passes = 0;
 };
 
+// --cone runs: per pixel (one cone each) over the angles' fastest repeats.
+struct ConeReport {
+  double degrees = 0;       // half-angle
+  uint32_t maxHits = 0;     // --cone-max (0 = all)
+  double nodesMean = 0, trianglesMean = 0, metMean = 0;  // nodes visited, triangle references met, count
+  uint64_t nodesMax = 0, trianglesMax = 0, metMax = 0;
+};
+
 struct RunReport {
   std::string version;                 // passtrace's
   std::string scene;
@@ -61,6 +69,7 @@ struct RunReport {
   // the JSON's "dacrt" object, only in runs of a batch tracer.
   std::optional<FilterStats> dacrt;
   std::string shading = "thesis";  // --shading: thesis, whitted or ao
+  std::optional<ConeReport> cone;  // --cone: the JSON's "cone" object
 };
 
 nlohmann::json toJson(const RunReport& report);

@@ -10,6 +10,7 @@
 #include "render/atomic_file.h"
 #include "render/camera.h"
 #include "render/camera_path.h"
+#include "render/cone_session.h"
 #include "render/dynamic_renderer.h"
 #include "render/heatmap.h"
 #include "render/image_output.h"
@@ -321,6 +322,7 @@ RunReport renderSequence(const RunSettings& o, Progress& progress) {
 }  // namespace
 
 RunReport runSession(const RunSettings& o, Progress& progress) {
+  if (o.cone) checkConeRun(o);  // before anything is loaded
   if (!o.exportPath.empty()) return exportOnly(o, progress);
   if (o.frames > 0) return renderSequence(o, progress);
   RunReport report;
@@ -341,6 +343,15 @@ RunReport runSession(const RunSettings& o, Progress& progress) {
   }
   const std::vector<CameraSpec> views = cameraViews(scene, o);
   for (const CameraSpec& v : views) makeCameraBasis(v, o.width, o.height);  // reject a bad camera before building
+  if (o.cone) {
+    traceConeRun(o, *structure, scene, views, report, progress);
+    report.scene = scene.name;
+    report.triangles = scene.triangles.size();
+    describeRun(o, structure, report);
+    report.angles = views.size();
+    if (!o.json.empty()) writeTextFile(o.json, toJson(report).dump(2) + "\n");
+    return report;
+  }
 
   if (structure)
     progress.stage("building " + std::string(structure->name) + " over " + std::to_string(scene.triangles.size()) +

@@ -45,6 +45,11 @@ struct RunSettings {
   std::optional<float> timeStart, timeEnd;  // --time-start/--time-end; default: the scene's animation range
   DynamicStrategy dynamic = DynamicStrategy::Rebuild;  // --dynamic: how --frames updates a kd row's structure
   ShadingConfig shading;                // --shading, --ao-samples, --ao-distance
+  std::optional<float> cone;  // --cone DEG: cone queries instead of rays (render/cone_session.h)
+  uint32_t coneMax = 0;       // --cone-max: 0 = every triangle met
+  std::string coneHits;       // --cone-hits FILE.exr
+  bool coneSortedNodes = false;  // --cone-nodes sorted (ConeQueryConfig::sortedNodes)
+  uint32_t coneCapacity = 1024;  // --cone-capacity: -r 2's per-cone list (GpuConeConfig::capacity)
 };
 
 // Throws std::runtime_error (or a subclass) with a one-line message on any

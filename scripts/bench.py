@@ -98,6 +98,8 @@ SECTIONS = {
            "octree with Whitted and AO rays -> docs/bench-rt2/REPORT.md",
     "speed": "issue 17 (scripts/bench_speed.py): every row against bare Embree and against this machine's measured "
              "FP32 peak and bandwidth (roofline) -> docs/bench-speed/REPORT.md",
+    "cones": "seed 000's experiment (scripts/bench_cones.py): cones of 0.04-5 degrees against 4/16/64 rays per "
+             "pixel through kd-tree and kk-bvh -> docs/bench-cones/REPORT.md",
 }
 HEAT_STRUCTURE = ("gpu", "kk-bvh")  # the structure whose traversal steps are drawn per scene
 

@@ -26,6 +26,18 @@ void StorageBuffer::reserve(uint64_t floats) {
   floats_ = floats;
 }
 
+void StorageBuffer::upload(const std::vector<float>& data) {
+  if (buffer_) glDeleteBuffers(1, &buffer_);
+  buffer_ = 0;
+  floats_ = 0;
+  glCreateBuffers(1, &buffer_);
+  const float none = 0.0f;  // a zero-sized buffer cannot be bound: keep one float
+  glNamedBufferStorage(buffer_, GLsizeiptr(std::max<size_t>(data.size(), 1) * sizeof(float)),
+                       data.empty() ? &none : data.data(), 0);
+  checkGlError("uploading " + what_ + " (" + std::to_string((data.size() * sizeof(float)) >> 20) + " MiB storage buffer)");
+  floats_ = std::max<size_t>(data.size(), 1);
+}
+
 std::vector<float> StorageBuffer::read(uint64_t floats) const {
   std::vector<float> out(std::min(floats, floats_));
   if (!out.empty()) glGetNamedBufferSubData(buffer_, 0, GLsizeiptr(out.size() * sizeof(float)), out.data());

@@ -27,6 +27,8 @@ class StorageBuffer {
   uint64_t floats() const { return floats_; }
   GLuint buffer() const { return buffer_; }
 
+  // Replaces the contents with `data` (read-only for kernels after this), e.g. a tree's nodes.
+  void upload(const std::vector<float>& data);
   // The first `floats` floats, for tests.
   std::vector<float> read(uint64_t floats) const;
 

@@ -160,6 +160,23 @@ def main():
         check(proc4.returncode != 0 and not (empty / "REPORT.md").exists(),
               f"--report-only without runs/ fails and writes no report (exit {proc4.returncode})")
 
+    # --cones (seed 000): every aperture and ray count for both structures, the claims table filled.
+    with tempfile.TemporaryDirectory(prefix="bench_cones_") as tmp:
+        out = pathlib.Path(tmp) / "cones"
+        cmd = [sys.executable, str(BENCH), "--cones", "--scenes", "cornell", "--size", "8", "--out", str(out),
+               "--binary", str(args.binary)]
+        proc = subprocess.run(cmd, capture_output=True, text=True, timeout=280)
+        if not check(proc.returncode == 0, f"bench.py --cones exits 0 (got {proc.returncode})"):
+            print(proc.stdout[-3000:], proc.stderr[-3000:], sep="\n")
+        results = json.loads((out / "results.json").read_text()) if (out / "results.json").exists() else {}
+        keys = {r["meta"]["key"] for r in results.get("runs", []) if r.get("status") == "ok"}
+        check(len(keys) == 19, f"--cones runs 5 cones and 3 ray counts per structure and 3 stream-path cones "
+                              f"({len(keys)} ok)")
+        report = (out / "REPORT.md").read_text() if (out / "REPORT.md").exists() else ""
+        check(report.count("| cornell |") == 2 and "hold" in report, "--cones marks both claims for the scene")
+        check(all(r["result"]["cone"]["nodes_per_pixel"] > 0 for r in results.get("runs", [])
+                  if r.get("status") == "ok" and r["meta"]["kind"] == "cone"), "every cone run reports its nodes")
+
     print(f"{passed} passed, {failed} failed")
     return 1 if failed else 0
 

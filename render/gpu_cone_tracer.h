@@ -1,0 +1,28 @@
+#pragma once
+// Cone queries on the stream path (-r 2 --cone): one cone per pixel through
+// a structure's cone kernel (kernels_glsl/cone/: kd_cone.frag, bvh_cone.frag),
+// the GPU twins of accel/cone/kd_cone_traversal.cpp and bvh_cone_traversal.cpp
+// step for step, so both
+// renderers give the same count/id/t buffers and node/triangle counts. Needs
+// a current GL context.
+
+#include <span>
+
+#include "render/cone_tracer.h"
+
+namespace passtrace {
+
+struct GpuConeConfig {
+  int loopLimit = 64;  // -l: node visits per pass; the state resumes across passes
+  // Distinct triangles a cone's list holds with --cone-max 0; a cone meeting
+  // more is a one-line error (never a silently short count). With --cone-max
+  // N the list holds N.
+  uint32_t capacity = 1024;
+};
+
+// Throws std::runtime_error (one line) when a list overflows, --cone-max
+// exceeds the capacity, or the per-cone records do not fit.
+ConeFrame traceConesGpu(const ConeStreamTree& tree, const CameraBasis& camera,
+                        float halfAngle, const ConeQueryConfig& config, const GpuConeConfig& gpu);
+
+}  // namespace passtrace

@@ -1,0 +1,74 @@
+// Issue 16's acceptance matrix for --cone (slow: minutes of CPU): the bunny
+// at 2.5 degrees and BART Kitchen at 0.5 and 2.5 degrees, 128^2, --cone-max 0:
+// kd-tree and kk-bvh give the same count on every pixel and the same
+// nearest id except at ties. (The bunny at 0.5 degrees is in tests/e2e/.)
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "tests/bart_dir.h"
+#include "tests/cli_support.h"
+#include "tests/cone_checks.h"
+
+namespace fs = std::filesystem;
+
+namespace passtrace {
+namespace {
+
+using test::RunResult;
+using Cli = test::CliTest;
+
+class ConeCli : public Cli {
+ public:
+  using Cli::path;
+  using Cli::run;
+};
+
+void compareStructures(ConeCli& cli, const std::string& scene, const char* degrees) {
+  for (const char* accel : {"kd-tree", "kk-bvh"}) {
+    const RunResult r = cli.run(scene + " -r 1 -w 128 --cone " + degrees + " -a " + accel + " --cone-hits " +
+                                cli.path(std::string(accel) + ".exr"));
+    ASSERT_EQ(r.status, 0) << r.err;
+  }
+  SCOPED_TRACE(scene + " --cone " + degrees);
+  test::expectConeBuffersAgree(cli.path("kd-tree.exr"), cli.path("kk-bvh.exr"), 128);
+}
+
+TEST_F(ConeCli, BunnyWideConeKdTreeAndBvhAgree) { compareStructures(*this, "-s bunny", "2.5"); }
+
+TEST_F(ConeCli, KitchenKdTreeAndBvhAgree) {
+  const fs::path bart = test::bartDir();
+  if (bart.empty() || !fs::exists(bart / "kitchen")) GTEST_SKIP() << "BART scenes not found; set PASSTRACE_BART_DIR";
+  for (const char* degrees : {"0.5", "2.5"})
+    compareStructures(*this, "-s kitchen --bart-dir " + bart.string(), degrees);
+}
+
+// The stream path (-r 2 -a kd-stack: the kd-tree's tree through
+// kernels_glsl/cone/kd_cone.frag) against the CPU (-r 1 -a kd-tree): the same
+// buffers, bit for bit, at 0.5 degrees. (At 2.5 degrees on the bunny, with
+// ~5000 triangles per cone, one pixel in 16384 counted 2 more triangles on
+// the stream path: a borderline exact test rounding differently in GLSL
+// double, not yet found; so 2.5 degrees is not asserted here yet.)
+void compareRenderers(ConeCli& cli, const std::string& scene, const char* degrees) {
+  const std::string cpu = cli.path("cpu.exr"), gpu = cli.path("gpu.exr");
+  RunResult r = cli.run(scene + " -r 1 -w 128 --cone " + degrees + " -a kd-tree --cone-hits " + cpu);
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = cli.run(scene + " -r 2 -w 128 --cone " + degrees + " -a kd-stack --cone-capacity 8192 --cone-hits " + gpu);
+  ASSERT_EQ(r.status, 0) << r.err;
+  SCOPED_TRACE(scene + " --cone " + degrees);
+  test::expectConeBuffersEqual(cpu, gpu, 128);
+}
+
+TEST_F(ConeCli, BunnyStreamPathEqualsCpu) {
+  compareRenderers(*this, "-s bunny", "0.5");
+}
+
+TEST_F(ConeCli, KitchenStreamPathEqualsCpu) {
+  const fs::path bart = test::bartDir();
+  if (bart.empty() || !fs::exists(bart / "kitchen")) GTEST_SKIP() << "BART scenes not found; set PASSTRACE_BART_DIR";
+  compareRenderers(*this, "-s kitchen --bart-dir " + bart.string(), "0.5");
+}
+
+}  // namespace
+}  // namespace passtrace
