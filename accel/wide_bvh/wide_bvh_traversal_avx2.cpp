@@ -90,11 +90,122 @@ WIDE_TARGET uint32_t packTest4(const TrianglePack& k, const RayPre& pre, float t
   return uint32_t(_mm_movemask_ps(hit));
 }
 
+// A packet of up to eight rays through one shared stack: a child is visited
+// when any live ray of the packet hits its box, and only by the rays that hit
+// it (per-entry ray masks). Each ray performs the same box and pack tests as
+// its single-ray traversal would at the nodes it visits, so its hit is the
+// same up to ties in t (the visiting order is the packet's).
+struct PacketEntry {
+  uint32_t ref;
+  uint32_t rays;  // bit r: ray r hit this child's box
+  float tNear;    // the least entry distance of those rays
+};
+
+WIDE_TARGET void tracePacket(const WideBvh& bvh, const Ray* rays, int count, bool anyHit, Hit* best,
+                             RayStats* stats) {
+  RayPre pre[8];
+  uint32_t steps[8] = {}, tests[8] = {};
+  for (int r = 0; r < count; ++r) {
+    pre[r] = prepare(rays[r]);
+    best[r] = Hit{rays[r].tMax};
+  }
+  if (bvh.nodes.empty()) return;
+  PacketEntry local[256];
+  std::vector<PacketEntry> heap;
+  PacketEntry* stack = local;
+  if (bvh.stackSize() > 256) {
+    heap.resize(bvh.stackSize());
+    stack = heap.data();
+  }
+  uint32_t alive = (1u << count) - 1u;  // rays still looking (shadow rays stop at their first hit)
+  int top = 0;
+  stack[top++] = PacketEntry{0u, alive, -kInfinity};
+  while (top > 0) {
+    const PacketEntry entry = stack[--top];
+    // Rays with a hit nearer than the entry distance of every ray here skip it.
+    uint32_t mask = entry.rays & alive, live = 0;
+    while (mask) {
+      const int r = __builtin_ctz(mask);
+      mask &= mask - 1;
+      if (entry.tNear < best[r].t) live |= 1u << r;
+    }
+    if (!live) continue;
+    if (!wideIsLeaf(entry.ref)) {
+      const WideBvhNode& node = bvh.nodes[entry.ref];
+      __m256i childRays = _mm256_setzero_si256();
+      __m256 childNear = _mm256_set1_ps(kInfinity);
+      for (uint32_t m = live; m;) {
+        const int r = __builtin_ctz(m);
+        m &= m - 1;
+        ++steps[r];
+        float tNear[8];
+        const uint32_t hit = boxTest8(node, pre[r], best[r].t, tNear);
+        if (!hit) continue;
+        // Lane i's bit of `hit` as an all-ones lane mask.
+        const __m256i lanes = _mm256_cmpeq_epi32(
+            _mm256_and_si256(_mm256_set1_epi32(int(hit)), _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128)),
+            _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128));
+        childRays = _mm256_or_si256(childRays, _mm256_and_si256(lanes, _mm256_set1_epi32(int(1u << r))));
+        childNear = _mm256_blendv_ps(childNear, _mm256_min_ps(childNear, _mm256_loadu_ps(tNear)),
+                                     _mm256_castsi256_ps(lanes));
+      }
+      alignas(32) uint32_t raysOf[8];
+      alignas(32) float nearOf[8];
+      _mm256_store_si256(reinterpret_cast<__m256i*>(raysOf), childRays);
+      _mm256_store_ps(nearOf, childNear);
+      PacketEntry hits[8];
+      int n = 0;
+      for (int lane = 0; lane < kWideBvhWidth; ++lane) {
+        if (!raysOf[lane]) continue;
+        PacketEntry e{node.child[lane], raysOf[lane], nearOf[lane]};
+        int j = n++;
+        while (!anyHit && j > 0 && hits[j - 1].tNear > e.tNear) {
+          hits[j] = hits[j - 1];
+          --j;
+        }
+        hits[j] = e;
+      }
+      for (int i = n; i-- > 0;) stack[top++] = hits[i];
+      continue;
+    }
+    const uint32_t first = wideLeafFirst(entry.ref), packs = wideLeafPacks(entry.ref);
+    for (uint32_t m = live; m;) {
+      const int r = __builtin_ctz(m);
+      m &= m - 1;
+      for (uint32_t p = first; p < first + packs; ++p) {
+        const TrianglePack& pack = bvh.packs[p];
+        float t[4], u[4], v[4];
+        uint32_t hit = packTest4(pack, pre[r], best[r].t, t, u, v);
+        for (int l = 0; l < kTrianglePackWidth; ++l) tests[r] += pack.id[l] != kNoHit;
+        while (hit) {
+          const int lane = __builtin_ctz(hit);
+          hit &= hit - 1;
+          if (t[lane] < best[r].t) best[r] = Hit{t[lane], u[lane], v[lane], pack.id[lane]};
+        }
+        if (anyHit && best[r].found()) {
+          alive &= ~(1u << r);
+          break;
+        }
+      }
+    }
+    if (!alive) break;
+  }
+  for (int r = 0; r < count; ++r) {
+    stats[r].steps += steps[r] + tests[r];
+    stats[r].triangleTests += tests[r];
+  }
+}
+
 }  // namespace
 
 Hit traverseWideBvhAvx2(const WideBvh& bvh, std::span<const Triangle> tris, const Ray& ray, bool anyHit,
                         TriangleTest test, RayStats* stats) {
   return traverse(bvh, tris, ray, anyHit, test, stats);
+}
+
+void traceWideBvhPacketAvx2(const WideBvh& bvh, std::span<const Ray> rays, bool anyHit, std::span<Hit> hits,
+                            std::span<RayStats> stats) {
+  tracePacket(bvh, rays.data(), int(rays.size()), anyHit, hits.data(), stats.data());
 }
 
 bool wideBvhAvx2Available() {
@@ -112,6 +223,8 @@ Hit traverseWideBvhAvx2(const WideBvh& bvh, std::span<const Triangle> tris, cons
                         TriangleTest test, RayStats* stats) {
   return traverseWideBvhScalar(bvh, tris, ray, anyHit, test, stats);
 }
+
+void traceWideBvhPacketAvx2(const WideBvh&, std::span<const Ray>, bool, std::span<Hit>, std::span<RayStats>) {}
 
 bool wideBvhAvx2Available() { return false; }
 
