@@ -93,7 +93,7 @@ WIDE_TARGET WIDE_INLINE uint32_t packTest4(const TrianglePack& k, const RayPre& 
   return uint32_t(_mm_movemask_ps(hit));
 }
 
-// A packet of up to eight rays through one shared stack: a child is visited
+// A packet of up to 32 rays through one shared stack: a child is visited
 // when any live ray of the packet hits its box, and only by the rays that hit
 // it (per-entry ray masks). Each ray performs the same box and pack tests as
 // its single-ray traversal would at the nodes it visits, so its hit is the
@@ -106,8 +106,8 @@ struct PacketEntry {
 
 WIDE_TARGET void tracePacket(const WideBvh& bvh, const Ray* rays, int count, bool anyHit, Hit* best,
                              RayStats* stats) {
-  RayPre pre[8];
-  uint32_t steps[8] = {}, tests[8] = {};
+  RayPre pre[kWidePacketMax];
+  uint32_t steps[kWidePacketMax] = {}, tests[kWidePacketMax] = {};
   for (int r = 0; r < count; ++r) {
     pre[r] = prepare(rays[r]);
     best[r] = Hit{rays[r].tMax};
@@ -120,7 +120,7 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const Ray* rays, int count, boo
     heap.resize(bvh.stackSize());
     stack = heap.data();
   }
-  uint32_t alive = (1u << count) - 1u;  // rays still looking (shadow rays stop at their first hit)
+  uint32_t alive = count >= 32 ? ~0u : (1u << count) - 1u;  // rays still looking (shadow rays stop at their first hit)
   int top = 0;
   stack[top++] = PacketEntry{0u, alive, -kInfinity};
   while (top > 0) {

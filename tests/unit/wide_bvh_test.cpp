@@ -141,7 +141,7 @@ TEST_P(WideBvhMeshTest, Avx2AndScalarTraversalsAgreeWithEachOtherAndBruteForce) 
   }
 }
 
-// Packets of eight (incoherent rays: the hardest case for shared traversal)
+// Packets of 32 (incoherent rays: the hardest case for shared traversal)
 // find what each ray finds alone: the same nearest t, closest or any hit.
 TEST_P(WideBvhMeshTest, PacketTraversalFindsWhatSingleRaysFind) {
   if (!wideBvhAvx2Available()) GTEST_SKIP() << "no AVX2";
@@ -149,8 +149,8 @@ TEST_P(WideBvhMeshTest, PacketTraversalFindsWhatSingleRaysFind) {
   const WideBvh bvh = collapseToWideBvh(buildBinnedSahBvh(tris), tris);
   const std::vector<Ray> rays = testmesh::rayMix(testmesh::boundsOf(tris), 150, 17);
   for (bool anyHit : {false, true}) {
-    for (size_t begin = 0; begin < rays.size(); begin += 8) {
-      const size_t count = std::min<size_t>(8, rays.size() - begin);
+    for (size_t begin = 0; begin < rays.size(); begin += kWidePacketMax) {
+      const size_t count = std::min<size_t>(kWidePacketMax, rays.size() - begin);
       std::vector<Hit> hits(count);
       std::vector<RayStats> stats(count);
       traceWideBvhPacketAvx2(bvh, std::span<const Ray>(rays.data() + begin, count), anyHit, hits, stats);
