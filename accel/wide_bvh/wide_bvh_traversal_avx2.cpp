@@ -25,7 +25,9 @@ WIDE_TARGET WIDE_INLINE uint32_t packTest4(const TrianglePack& pack, const RayPr
 
 #include "accel/wide_bvh/wide_bvh_traverse.inc"
 
-WIDE_TARGET WIDE_INLINE uint32_t boxTest8(const WideBvhNode& node, const RayPre& pre, float tBest, float* tNear) {
+// The eight slab tests as vectors: entry distances and the all-ones lanes of the boxes hit.
+WIDE_TARGET WIDE_INLINE void boxTest8v(const WideBvhNode& node, const RayPre& pre, float tBest, __m256& near,
+                                       __m256& hit) {
   const float* mins[3] = {node.minX, node.minY, node.minZ};
   const float* maxs[3] = {node.maxX, node.maxY, node.maxZ};
   __m256 s[3], l[3];
@@ -48,12 +50,17 @@ WIDE_TARGET WIDE_INLINE uint32_t boxTest8(const WideBvhNode& node, const RayPre&
       l[k] = _mm256_blendv_ps(minusInf, inf, inside);
     }
   }
-  const __m256 near = _mm256_max_ps(_mm256_max_ps(s[0], s[1]), s[2]);
+  near = _mm256_max_ps(_mm256_max_ps(s[0], s[1]), s[2]);
   const __m256 exit = _mm256_mul_ps(_mm256_min_ps(_mm256_min_ps(l[0], l[1]), l[2]), _mm256_set1_ps(kRobustExitScale));
-  _mm256_storeu_ps(tNear, near);
-  const __m256 hit = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(near, exit, _CMP_LE_OQ),
+  hit = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(near, exit, _CMP_LE_OQ),
                                                  _mm256_cmp_ps(exit, _mm256_setzero_ps(), _CMP_GE_OQ)),
                                    _mm256_cmp_ps(near, _mm256_set1_ps(tBest), _CMP_LT_OQ));
+}
+
+WIDE_TARGET WIDE_INLINE uint32_t boxTest8(const WideBvhNode& node, const RayPre& pre, float tBest, float* tNear) {
+  __m256 near, hit;
+  boxTest8v(node, pre, tBest, near, hit);
+  _mm256_storeu_ps(tNear, near);
   return uint32_t(_mm256_movemask_ps(hit));
 }
 
@@ -141,16 +148,11 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const Ray* rays, int count, boo
         const int r = __builtin_ctz(m);
         m &= m - 1;
         ++steps[r];
-        float tNear[8];
-        const uint32_t hit = boxTest8(node, pre[r], best[r].t, tNear);
-        if (!hit) continue;
-        // Lane i's bit of `hit` as an all-ones lane mask.
-        const __m256i lanes = _mm256_cmpeq_epi32(
-            _mm256_and_si256(_mm256_set1_epi32(int(hit)), _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128)),
-            _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128));
-        childRays = _mm256_or_si256(childRays, _mm256_and_si256(lanes, _mm256_set1_epi32(int(1u << r))));
-        childNear = _mm256_blendv_ps(childNear, _mm256_min_ps(childNear, _mm256_loadu_ps(tNear)),
-                                     _mm256_castsi256_ps(lanes));
+        __m256 near, hit;
+        boxTest8v(node, pre[r], best[r].t, near, hit);
+        const __m256i bit = _mm256_set1_epi32(int(1u << r));
+        childRays = _mm256_or_si256(childRays, _mm256_and_si256(_mm256_castps_si256(hit), bit));
+        childNear = _mm256_min_ps(childNear, _mm256_blendv_ps(childNear, near, hit));
       }
       alignas(32) uint32_t raysOf[8];
       alignas(32) float nearOf[8];
