@@ -82,29 +82,33 @@ std::optional<FilterStats> Bvh8Accelerator::traceBatch(const RayBatch& batch, st
       } else {
         for (size_t i = tile * kTile; i < std::min(tile * kTile + kTile, n); ++i) index[count++] = i;
       }
+      // One pass sorts the tile's rays into the two packets (closest hit, shadow).
+      size_t members[2][kTile];
+      int sizes[2] = {0, 0};
+      for (int k = 0; k < count; ++k) {
+        const size_t i = index[k];
+        if (!batch.active[i]) continue;
+        const int shadow = batch.anyHit[i] != 0;
+        if (!shadow && !batch.primary) {
+          hits[i] = intersect(batch.rays[i], false, &stats[i]);
+          continue;
+        }
+        members[shadow][sizes[shadow]++] = i;
+      }
       for (int shadow = 0; shadow < 2; ++shadow) {
+        const int m = sizes[shadow];
+        if (m == 0) continue;
         Ray rays[kTile];
         Hit packetHits[kTile];
         RayStats packetStats[kTile];
-        size_t members[kTile];
-        int m = 0;
-        for (int k = 0; k < count; ++k) {
-          const size_t i = index[k];
-          if (!batch.active[i] || (batch.anyHit[i] != 0) != (shadow != 0)) continue;
-          if (!shadow && !batch.primary) {
-            hits[i] = intersect(batch.rays[i], false, &stats[i]);
-            continue;
-          }
-          members[m] = i;
-          rays[m++] = batch.rays[i];
-        }
-        if (m == 0) continue;
+        for (int k = 0; k < m; ++k) rays[k] = batch.rays[members[shadow][k]];
         traceWideBvhPacketAvx2(bvh_, std::span<const Ray>(rays, size_t(m)), shadow != 0,
                                std::span<Hit>(packetHits, size_t(m)), std::span<RayStats>(packetStats, size_t(m)));
         for (int k = 0; k < m; ++k) {
-          hits[members[k]] = packetHits[k];
-          stats[members[k]].steps += packetStats[k].steps;
-          stats[members[k]].triangleTests += packetStats[k].triangleTests;
+          const size_t i = members[shadow][k];
+          hits[i] = packetHits[k];
+          stats[i].steps += packetStats[k].steps;
+          stats[i].triangleTests += packetStats[k].triangleTests;
         }
       }
     }
