@@ -158,8 +158,8 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const Ray* rays, int count, boo
       alignas(32) float nearOf[8];
       _mm256_store_si256(reinterpret_cast<__m256i*>(raysOf), childRays);
       _mm256_store_ps(nearOf, childNear);
-      // Nearest first for shadow packets too: a shadow ray starts on a surface,
-      // and its occluders lie mostly near it (1.1-1.5x less CPU time than lane order).
+      // Nearest first for shadow packets too: measured 1.1-1.5x less CPU time per
+      // frame with shadow rays than lane order (the single-ray loop showed no gain).
       PacketEntry hits[8];
       int n = 0;
       for (int lane = 0; lane < kWideBvhWidth; ++lane) {
