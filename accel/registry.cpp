@@ -174,6 +174,11 @@ std::vector<Structure> makeRows() {
        .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeBvh8Cpu,
        .memory = {211, 0}, .reads = {}},
+      {.name = "bvh8-packet", .family = "wide_bvh",
+       .description = "bvh8 traced in packets of 32 rays (8x4 pixels) for primary and shadow rays",
+       .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
+       .cpu = makeBvh8PacketCpu,
+       .memory = {211, 0}, .reads = {}},
   };
 #if PASSTRACE_HAVE_EMBREE
   rows.push_back({.name = "embree", .family = "embree",

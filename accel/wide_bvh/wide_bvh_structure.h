@@ -12,5 +12,9 @@
 namespace passtrace {
 
 std::unique_ptr<CpuAccelerator> makeBvh8Cpu(std::span<const Triangle> tris, const AccelBuildConfig& config);
+// The same tree traced by the batch entry point: primary and shadow rays as
+// packets of 32 (8x4 pixels) sharing one traversal (AVX2 with the
+// Möller–Trumbore test; else the per-ray loop), other rays one at a time.
+std::unique_ptr<CpuAccelerator> makeBvh8PacketCpu(std::span<const Triangle> tris, const AccelBuildConfig& config);
 
 }  // namespace passtrace

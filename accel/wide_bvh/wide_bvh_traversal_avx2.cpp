@@ -15,15 +15,19 @@ namespace passtrace {
 namespace {
 
 #define WIDE_TARGET __attribute__((target("avx2")))
+// The node and pack tests inlined into the loops (GCC kept them as calls: 9 % of a frame in the call alone).
+#define WIDE_INLINE inline __attribute__((always_inline))
 
 struct RayPre;
-WIDE_TARGET uint32_t boxTest8(const WideBvhNode& node, const RayPre& pre, float tBest, float* tNear);
-WIDE_TARGET uint32_t packTest4(const TrianglePack& pack, const RayPre& pre, float tBest, float* t, float* u,
+WIDE_TARGET WIDE_INLINE uint32_t boxTest8(const WideBvhNode& node, const RayPre& pre, float tBest, float* tNear);
+WIDE_TARGET WIDE_INLINE uint32_t packTest4(const TrianglePack& pack, const RayPre& pre, float tBest, float* t, float* u,
                                float* v);
 
 #include "accel/wide_bvh/wide_bvh_traverse.inc"
 
-WIDE_TARGET uint32_t boxTest8(const WideBvhNode& node, const RayPre& pre, float tBest, float* tNear) {
+// The eight slab tests as vectors: entry distances and the all-ones lanes of the boxes hit.
+WIDE_TARGET WIDE_INLINE void boxTest8v(const WideBvhNode& node, const RayPre& pre, float tBest, __m256& near,
+                                       __m256& hit) {
   const float* mins[3] = {node.minX, node.minY, node.minZ};
   const float* maxs[3] = {node.maxX, node.maxY, node.maxZ};
   __m256 s[3], l[3];
@@ -46,12 +50,17 @@ WIDE_TARGET uint32_t boxTest8(const WideBvhNode& node, const RayPre& pre, float 
       l[k] = _mm256_blendv_ps(minusInf, inf, inside);
     }
   }
-  const __m256 near = _mm256_max_ps(_mm256_max_ps(s[0], s[1]), s[2]);
+  near = _mm256_max_ps(_mm256_max_ps(s[0], s[1]), s[2]);
   const __m256 exit = _mm256_mul_ps(_mm256_min_ps(_mm256_min_ps(l[0], l[1]), l[2]), _mm256_set1_ps(kRobustExitScale));
-  _mm256_storeu_ps(tNear, near);
-  const __m256 hit = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(near, exit, _CMP_LE_OQ),
+  hit = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(near, exit, _CMP_LE_OQ),
                                                  _mm256_cmp_ps(exit, _mm256_setzero_ps(), _CMP_GE_OQ)),
                                    _mm256_cmp_ps(near, _mm256_set1_ps(tBest), _CMP_LT_OQ));
+}
+
+WIDE_TARGET WIDE_INLINE uint32_t boxTest8(const WideBvhNode& node, const RayPre& pre, float tBest, float* tNear) {
+  __m256 near, hit;
+  boxTest8v(node, pre, tBest, near, hit);
+  _mm256_storeu_ps(tNear, near);
   return uint32_t(_mm256_movemask_ps(hit));
 }
 
@@ -60,7 +69,8 @@ WIDE_TARGET inline __m128 dot(__m128 ax, __m128 ay, __m128 az, __m128 bx, __m128
   return _mm_add_ps(_mm_add_ps(_mm_mul_ps(ax, bx), _mm_mul_ps(ay, by)), _mm_mul_ps(az, bz));
 }
 
-WIDE_TARGET uint32_t packTest4(const TrianglePack& k, const RayPre& pre, float tBest, float* t, float* u, float* v) {
+WIDE_TARGET WIDE_INLINE uint32_t packTest4(const TrianglePack& k, const RayPre& pre, float tBest, float* t, float* u,
+                                           float* v) {
   const __m128 dx = _mm_set1_ps(pre.d[0]), dy = _mm_set1_ps(pre.d[1]), dz = _mm_set1_ps(pre.d[2]);
   const __m128 e1x = _mm_load_ps(k.e1x), e1y = _mm_load_ps(k.e1y), e1z = _mm_load_ps(k.e1z);
   const __m128 e2x = _mm_load_ps(k.e2x), e2y = _mm_load_ps(k.e2y), e2z = _mm_load_ps(k.e2z);
@@ -90,11 +100,119 @@ WIDE_TARGET uint32_t packTest4(const TrianglePack& k, const RayPre& pre, float t
   return uint32_t(_mm_movemask_ps(hit));
 }
 
+// A packet of up to 32 rays through one shared stack: a child is visited
+// when any live ray of the packet hits its box, and only by the rays that hit
+// it (per-entry ray masks). Each ray performs the same box and pack tests as
+// its single-ray traversal would at the nodes it visits, so its hit is the
+// same up to ties in t (the visiting order is the packet's).
+struct PacketEntry {
+  uint32_t ref;
+  uint32_t rays;  // bit r: ray r hit this child's box
+  float tNear;    // the least entry distance of those rays
+};
+
+WIDE_TARGET void tracePacket(const WideBvh& bvh, const Ray* rays, int count, bool anyHit, Hit* best,
+                             RayStats* stats) {
+  RayPre pre[kWidePacketMax];
+  uint32_t steps[kWidePacketMax] = {}, tests[kWidePacketMax] = {};
+  for (int r = 0; r < count; ++r) {
+    pre[r] = prepare(rays[r]);
+    best[r] = Hit{rays[r].tMax};
+  }
+  if (bvh.nodes.empty()) return;
+  PacketEntry local[256];
+  std::vector<PacketEntry> heap;
+  PacketEntry* stack = local;
+  if (bvh.stackSize() > 256) {
+    heap.resize(bvh.stackSize());
+    stack = heap.data();
+  }
+  uint32_t alive = count >= 32 ? ~0u : (1u << count) - 1u;  // rays still looking (shadow rays stop at their first hit)
+  int top = 0;
+  stack[top++] = PacketEntry{0u, alive, -kInfinity};
+  while (top > 0) {
+    const PacketEntry entry = stack[--top];
+    // Rays with a hit nearer than the entry distance of every ray here skip it.
+    uint32_t mask = entry.rays & alive, live = 0;
+    while (mask) {
+      const int r = __builtin_ctz(mask);
+      mask &= mask - 1;
+      if (entry.tNear < best[r].t) live |= 1u << r;
+    }
+    if (!live) continue;
+    if (!wideIsLeaf(entry.ref)) {
+      const WideBvhNode& node = bvh.nodes[entry.ref];
+      __m256i childRays = _mm256_setzero_si256();
+      __m256 childNear = _mm256_set1_ps(kInfinity);
+      for (uint32_t m = live; m;) {
+        const int r = __builtin_ctz(m);
+        m &= m - 1;
+        ++steps[r];
+        __m256 near, hit;
+        boxTest8v(node, pre[r], best[r].t, near, hit);
+        const __m256i bit = _mm256_set1_epi32(int(1u << r));
+        childRays = _mm256_or_si256(childRays, _mm256_and_si256(_mm256_castps_si256(hit), bit));
+        childNear = _mm256_min_ps(childNear, _mm256_blendv_ps(childNear, near, hit));
+      }
+      alignas(32) uint32_t raysOf[8];
+      alignas(32) float nearOf[8];
+      _mm256_store_si256(reinterpret_cast<__m256i*>(raysOf), childRays);
+      _mm256_store_ps(nearOf, childNear);
+      // Nearest first for shadow packets too: measured 1.1-1.5x less CPU time per
+      // frame with shadow rays than lane order (the single-ray loop showed no gain).
+      PacketEntry hits[8];
+      int n = 0;
+      for (int lane = 0; lane < kWideBvhWidth; ++lane) {
+        if (!raysOf[lane]) continue;
+        PacketEntry e{node.child[lane], raysOf[lane], nearOf[lane]};
+        int j = n++;
+        while (j > 0 && hits[j - 1].tNear > e.tNear) {
+          hits[j] = hits[j - 1];
+          --j;
+        }
+        hits[j] = e;
+      }
+      for (int i = n; i-- > 0;) stack[top++] = hits[i];
+      continue;
+    }
+    const uint32_t first = wideLeafFirst(entry.ref), packs = wideLeafPacks(entry.ref);
+    for (uint32_t m = live; m;) {
+      const int r = __builtin_ctz(m);
+      m &= m - 1;
+      for (uint32_t p = first; p < first + packs; ++p) {
+        const TrianglePack& pack = bvh.packs[p];
+        float t[4], u[4], v[4];
+        uint32_t hit = packTest4(pack, pre[r], best[r].t, t, u, v);
+        for (int l = 0; l < kTrianglePackWidth; ++l) tests[r] += pack.id[l] != kNoHit;
+        while (hit) {
+          const int lane = __builtin_ctz(hit);
+          hit &= hit - 1;
+          if (t[lane] < best[r].t) best[r] = Hit{t[lane], u[lane], v[lane], pack.id[lane]};
+        }
+        if (anyHit && best[r].found()) {
+          alive &= ~(1u << r);
+          break;
+        }
+      }
+    }
+    if (!alive) break;
+  }
+  for (int r = 0; r < count; ++r) {
+    stats[r].steps += steps[r] + tests[r];
+    stats[r].triangleTests += tests[r];
+  }
+}
+
 }  // namespace
 
 Hit traverseWideBvhAvx2(const WideBvh& bvh, std::span<const Triangle> tris, const Ray& ray, bool anyHit,
                         TriangleTest test, RayStats* stats) {
   return traverse(bvh, tris, ray, anyHit, test, stats);
+}
+
+void traceWideBvhPacketAvx2(const WideBvh& bvh, std::span<const Ray> rays, bool anyHit, std::span<Hit> hits,
+                            std::span<RayStats> stats) {
+  tracePacket(bvh, rays.data(), int(rays.size()), anyHit, hits.data(), stats.data());
 }
 
 bool wideBvhAvx2Available() {
@@ -112,6 +230,8 @@ Hit traverseWideBvhAvx2(const WideBvh& bvh, std::span<const Triangle> tris, cons
                         TriangleTest test, RayStats* stats) {
   return traverseWideBvhScalar(bvh, tris, ray, anyHit, test, stats);
 }
+
+void traceWideBvhPacketAvx2(const WideBvh&, std::span<const Ray>, bool, std::span<Hit>, std::span<RayStats>) {}
 
 bool wideBvhAvx2Available() { return false; }
 

@@ -2,16 +2,20 @@
 // binned build's SAH cost is within 3 % of the exact sweep's, the collapse
 // stores every triangle exactly once with child boxes around their subtrees,
 // and the AVX2 and scalar traversals return identical hits and counts (and
-// the brute-force nearest hit).
+// the brute-force nearest hit); packets of rays (bvh8-packet) find what
+// single rays and brute force find.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include "accel/brute_force.h"
 #include "accel/wide_bvh/binary_bvh.h"
 #include "accel/wide_bvh/wide_bvh.h"
+#include "accel/wide_bvh/wide_bvh_structure.h"
 #include "accel/wide_bvh/wide_bvh_traversal.h"
 #include "tests/test_meshes.h"
 
@@ -134,6 +138,67 @@ TEST_P(WideBvhMeshTest, Avx2AndScalarTraversalsAgreeWithEachOtherAndBruteForce) 
         EXPECT_EQ(avxStats.steps, scalarStats.steps) << "ray " << i;
         EXPECT_EQ(avxStats.triangleTests, scalarStats.triangleTests) << "ray " << i;
       }
+    }
+  }
+}
+
+// Packets of 32 (incoherent rays: the hardest case for shared traversal)
+// find what each ray finds alone: the same nearest t, closest or any hit.
+TEST_P(WideBvhMeshTest, PacketTraversalFindsWhatSingleRaysFind) {
+  if (!wideBvhAvx2Available()) GTEST_SKIP() << "no AVX2";
+  const auto& tris = GetParam().tris;
+  const WideBvh bvh = collapseToWideBvh(buildBinnedSahBvh(tris), tris);
+  const std::vector<Ray> rays = testmesh::rayMix(testmesh::boundsOf(tris), 150, 17);
+  for (bool anyHit : {false, true}) {
+    for (size_t begin = 0; begin < rays.size(); begin += kWidePacketMax) {
+      const size_t count = std::min<size_t>(kWidePacketMax, rays.size() - begin);
+      std::vector<Hit> hits(count);
+      std::vector<RayStats> stats(count);
+      traceWideBvhPacketAvx2(bvh, std::span<const Ray>(rays.data() + begin, count), anyHit, hits, stats);
+      for (size_t k = 0; k < count; ++k) {
+        const Ray& ray = rays[begin + k];
+        const Hit single = traverseWideBvhAvx2(bvh, tris, ray, anyHit, TriangleTest::MollerTrumbore, nullptr);
+        ASSERT_EQ(hits[k].found(), single.found()) << "ray " << begin + k;
+        if (!anyHit) EXPECT_EQ(hits[k].t, single.t) << "ray " << begin + k;
+        if (anyHit && hits[k].found()) EXPECT_LT(hits[k].t, ray.tMax) << "ray " << begin + k;
+        if (!tris.empty()) EXPECT_GT(stats[k].steps, 0u) << "ray " << begin + k;
+      }
+    }
+  }
+}
+
+// bvh8-packet's batch entry point on an image-shaped batch (a partly inactive
+// 13x7 image: tiles cut at the edges) of camera rays, then of shadow rays to a
+// point mixed with reflection-like rays: brute force's nearest t and any-hit answer.
+TEST_P(WideBvhMeshTest, PacketBatchesEqualBruteForce) {
+  const auto& tris = GetParam().tris;
+  const std::unique_ptr<CpuAccelerator> accel = makeBvh8PacketCpu(tris, AccelBuildConfig{});
+  const Aabb box = testmesh::boundsOf(tris);
+  const glm::vec3 centre = tris.empty() ? glm::vec3(0.0f) : 0.5f * (box.min + box.max);
+  const glm::vec3 eye = centre + glm::vec3(0.3f, 0.4f, 3.0f), light = centre + glm::vec3(-0.5f, 2.0f, 1.0f);
+  constexpr int kW = 13, kH = 7;
+  std::vector<Ray> rays(kW * kH);
+  std::vector<uint8_t> active(rays.size()), anyHit(rays.size());
+  for (bool primary : {true, false}) {
+    for (int i = 0; i < kW * kH; ++i) {
+      const glm::vec3 target = centre + glm::vec3(float(i % kW) / kW - 0.5f, float(i / kW) / kH - 0.5f, 0.0f);
+      active[i] = i % 11 != 3;
+      anyHit[i] = !primary && i % 3 != 0;
+      if (primary || !anyHit[i]) {
+        rays[i] = Ray{eye, glm::normalize(target - eye), kInfinity};
+      } else {
+        rays[i] = Ray{target, glm::normalize(light - target), glm::length(light - target)};
+      }
+    }
+    RayBatch batch{rays, active, anyHit, kW, kH, primary, light, 2};
+    std::vector<Hit> hits(rays.size());
+    std::vector<RayStats> stats(rays.size());
+    accel->traceBatch(batch, hits, stats);
+    for (size_t i = 0; i < rays.size(); ++i) {
+      if (!active[i]) continue;
+      const Hit brute = intersectBruteForce(tris, rays[i], anyHit[i] != 0, nullptr, TriangleTest::MollerTrumbore);
+      ASSERT_EQ(hits[i].found(), brute.found()) << "element " << i << " primary " << primary;
+      if (!anyHit[i] && brute.found()) EXPECT_EQ(hits[i].t, brute.t) << "element " << i;
     }
   }
 }
