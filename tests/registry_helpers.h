@@ -3,6 +3,7 @@
 // renderer's column, or by name (accel/registry.h).
 
 #include <algorithm>
+#include <cctype>
 #include <memory>
 #include <span>
 #include <string>
@@ -50,6 +51,18 @@ inline std::vector<std::pair<int, std::string>> everyStructureRun() {
         for (const char* b : {"sbvh", "middle"}) runs.emplace_back(int(r), std::string(s.name) + " --bvh-builder " + b);
     }
   return runs;
+}
+
+// A test name for an everyStructureRun entry: "r2_kd_shortstack_stack_size_1"
+// for (2, "kd-shortstack --stack-size 1").
+inline std::string runName(const std::pair<int, std::string>& run) {
+  std::string name = "r" + std::to_string(run.first) + "_";
+  for (const char c : run.second)
+    if (std::isalnum(static_cast<unsigned char>(c)))
+      name += c;
+    else if (name.back() != '_')
+      name += '_';
+  return name;
 }
 
 // The loop limits (-l) a command-line test runs `run` (an everyStructureRun

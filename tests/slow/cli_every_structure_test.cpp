@@ -4,7 +4,6 @@
 // entries, bvh-stack with each --bvh-builder, the GPU kd and stack-BVH rows at
 // loop limits 3 and 64.
 
-#include <cctype>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -57,19 +56,8 @@ TEST_P(EveryStructure, HitBuffersEqualBruteForceOnBartScenes) {
     checkScene(name, loadScene(name, SceneOptions{bart}), " --bart-dir " + bart.string(), 24, 1);
 }
 
-// "r2_kd_shortstack_stack_size_1" for (2, "kd-shortstack --stack-size 1").
-std::string runName(const std::pair<int, std::string>& run) {
-  std::string name = "r" + std::to_string(run.first) + "_";
-  for (const char c : run.second)
-    if (std::isalnum(static_cast<unsigned char>(c)))
-      name += c;
-    else if (name.back() != '_')
-      name += '_';
-  return name;
-}
-
 INSTANTIATE_TEST_SUITE_P(Cli, EveryStructure, ::testing::ValuesIn(testing_registry::everyStructureRun()),
-                         [](const auto& info) { return runName(info.param); });
+                         [](const auto& info) { return testing_registry::runName(info.param); });
 
 }  // namespace
 }  // namespace passtrace

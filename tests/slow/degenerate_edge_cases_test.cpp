@@ -68,23 +68,36 @@ std::vector<EdgeCase> edgeCases() {
 
 // Every degenerate scene through every structure of every renderer: the
 // primary hits equal brute force, with three bounces traced behind them
-// (shadow rays and shading must cope as well), and the preview renders.
-TEST_F(DegenerateCli, EdgeCaseScenesMatchBruteForceOnEveryStructure) {
+// (shadow rays and shading must cope as well). One test per structure, so
+// that each has its own time limit and ctest runs them side by side.
+class DegenerateEveryStructure : public DegenerateCli,
+                                 public ::testing::WithParamInterface<std::pair<int, std::string>> {};
+
+TEST_P(DegenerateEveryStructure, EdgeCaseScenesMatchBruteForce) {
+  const auto& [renderer, accel] = GetParam();
   for (const EdgeCase& c : edgeCases()) {
     const std::string file = write(std::string(c.name) + ".obj", objOf(c.tris));
     const Scene scene = loadScene(file);
     ASSERT_EQ(scene.triangles.size(), c.tris.size());
-    for (const auto& [renderer, accel] : kEveryStructure) {
-      SCOPED_TRACE(std::string(c.name) + " -r " + std::to_string(renderer) + " -a " + accel);
-      const RunResult r = run("-s " + file + " -b 3 -w 12 -t 1 -r " + std::to_string(renderer) + " -a " + accel +
-                              " --hits " + path("h.exr"));
-      ASSERT_EQ(r.status, 0) << r.err;
-      // Embree's own triangle test rounds differently from Möller–Trumbore:
-      // a ray passing within rounding error (0.25 units at 3e6) of an edge
-      // may take the neighbouring triangle or miss (4 of 144 pixels here).
-      const int allowed = renderer == 3 && std::string(c.name) == "far_from_origin" ? 8 : 0;
-      test::expectHitsMatchBruteForce(path("h.exr"), scene, 12, 12, c.minFound, allowed);
-    }
+    SCOPED_TRACE(std::string(c.name) + " -r " + std::to_string(renderer) + " -a " + accel);
+    const RunResult r = run("-s " + file + " -b 3 -w 12 -t 1 -r " + std::to_string(renderer) + " -a " + accel +
+                            " --hits " + path("h.exr"));
+    ASSERT_EQ(r.status, 0) << r.err;
+    // Embree's own triangle test rounds differently from Möller–Trumbore:
+    // a ray passing within rounding error (0.25 units at 3e6) of an edge
+    // may take the neighbouring triangle or miss (4 of 144 pixels here).
+    const int allowed = renderer == 3 && std::string(c.name) == "far_from_origin" ? 8 : 0;
+    test::expectHitsMatchBruteForce(path("h.exr"), scene, 12, 12, c.minFound, allowed);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllStructures, DegenerateEveryStructure, ::testing::ValuesIn(kEveryStructure),
+                         [](const auto& info) { return testing_registry::runName(info.param); });
+
+// ...and the rasterized preview renders them.
+TEST_F(DegenerateCli, EdgeCaseScenesRenderInThePreview) {
+  for (const EdgeCase& c : edgeCases()) {
+    const std::string file = write(std::string(c.name) + ".obj", objOf(c.tris));
     const RunResult preview = run("-s " + file + " -r 0 -w 12 -o " + path("p.png"));
     EXPECT_EQ(preview.status, 0) << c.name << ": " << preview.err;
     EXPECT_TRUE(fs::exists(path("p.png"))) << c.name;
