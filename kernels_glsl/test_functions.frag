@@ -8,9 +8,15 @@
 //                  writes must reach the next pass)
 //   TEST_AO_HASH:  h = pcgHash(pixel in0.x ^ pcgHash(sample in0.y)); out = (h >> 8, h & 255, aoRandom(in0.x, in0.y))
 //   TEST_AO_DIRECTION: out.xyz = aoDirection(normal in0.xyz, u in1.xy)
+//   TEST_CONE_TRIANGLE: out.xy = (met ? 1 : 0, t) of coneMeetsTriangle over case `element index` of the
+//                  storage buffer: 32 floats a case, the apex and triangle as floats, the unit axis,
+//                  cos and sin of the half-angle as doubles (two words each, low first)
 #include "texel_address.glsl"
 #include "intersect.glsl"
 #include "ao_sampling.glsl"
+#ifdef TEST_CONE_TRIANGLE
+#include "cone/cone_tests.glsl"
+#endif
 
 uniform ConstStream uData;
 uniform sampler2D uIn0;
@@ -19,7 +25,7 @@ uniform sampler2D uIn2;
 uniform sampler2D uIn3;
 uniform sampler2D uIn4;
 uniform int uWidth;
-#ifdef TEST_STORAGE
+#if defined(TEST_STORAGE) || defined(TEST_CONE_TRIANGLE)
 layout(std430, binding = 0) buffer TestStorage { float storage[]; };
 #endif
 
@@ -49,5 +55,15 @@ void main() {
   outResult = vec4(float(h >> 8u), float(h & 255u), aoRandom(ps.x, ps.y));
 #elif defined(TEST_AO_DIRECTION)
   outResult = vec4(aoDirection(readElement(uIn0).xyz, readElement(uIn1).xy), 0.0);
+#elif defined(TEST_CONE_TRIANGLE)
+  uint b = 32u * (uint(gl_FragCoord.y) * uint(uWidth) + uint(gl_FragCoord.x));
+  vec3 f[4];
+  for (uint i = 0u; i < 4u; ++i) f[i] = vec3(storage[b + 3u * i], storage[b + 3u * i + 1u], storage[b + 3u * i + 2u]);
+  double d[5];
+  for (uint i = 0u; i < 5u; ++i)
+    d[i] = packDouble2x32(uvec2(floatBitsToUint(storage[b + 12u + 2u * i]), floatBitsToUint(storage[b + 13u + 2u * i])));
+  float t;
+  bool met = coneMeetsTriangle(dvec3(f[0]), dvec3(d[0], d[1], d[2]), d[3], d[4], dvec3(f[1]), dvec3(f[2]), dvec3(f[3]), t);
+  outResult = vec4(met ? 1.0 : 0.0, t, 0.0, 0.0);
 #endif
 }

@@ -9,11 +9,15 @@
 #include "accel/cone/cone_tests.h"
 #include "stream/gl.h"
 #include "stream/inout_stream.h"
+#include "stream/shader_loop_budget.h"
 #include "stream/storage_buffer.h"
 #include "stream/stream_kernel.h"
 
 namespace passtrace {
 namespace {
+
+// Floats before a record's stack (kernels_glsl/cone/cone_record.glsl: CONE_HEADER).
+constexpr uint64_t kConeRecordHeader = 12;
 
 float bits(uint32_t u) { return std::bit_cast<float>(u); }
 
@@ -36,14 +40,31 @@ ConeFrame traceConesGpu(const ConeStreamTree& tree, const CameraBasis& camera,
   InOutStream::checkSize(width, height);
   const uint64_t elements = uint64_t(width) * uint64_t(height);
   const uint32_t capacity = config.maxHits > 0 ? config.maxHits : gpu.capacity;
+  // --cone-max N keeps a sorted list of N; --cone-max 0 a set (open
+  // addressing) at most half full.
+  const uint32_t tableSize = std::bit_ceil(2 * uint64_t(gpu.capacity)) > (uint64_t(1) << 31)
+                                 ? 0u
+                                 : uint32_t(std::bit_ceil(2 * uint64_t(gpu.capacity)));
+  if (config.maxHits == 0 && tableSize == 0)
+    throw std::runtime_error("--cone-capacity " + std::to_string(gpu.capacity) + " is too large");
+  const uint64_t hitFloats = config.maxHits > 0 ? 2 * uint64_t(config.maxHits) : tableSize;
   const uint32_t stackSize = tree.stackSize;
-  const uint64_t stride = 8 + 3 * uint64_t(stackSize) + 2 * uint64_t(capacity);
+  const uint64_t stride = kConeRecordHeader + 3 * uint64_t(stackSize) + hitFloats;
   constexpr uint64_t kMaxRecordFloats = uint64_t(1) << 30;  // 4 GiB
   if (elements * stride > kMaxRecordFloats)
     throw std::runtime_error("--cone on the stream path: " + std::to_string(width) + "x" + std::to_string(height) +
                              " cones with lists of " + std::to_string(capacity) + " need " +
                              std::to_string((elements * stride * 4) >> 20) +
                              " MiB of records (at most 4096): use a smaller -s or --cone-max");
+  // A pass must have room for one triangle and its insertion into the list
+  // (cone_record.glsl: insertWork), or the kernel could not progress.
+  const auto* glRenderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  const uint32_t workBudget = shaderLoopBudget(glRenderer ? glRenderer : "");
+  const uint64_t maxHitsLimit = workBudget > 200 ? workBudget - 200 : 0;
+  if (config.maxHits > maxHitsLimit)
+    throw std::runtime_error("--cone-max " + std::to_string(config.maxHits) + ": the stream path on this driver keeps at most " +
+                             std::to_string(maxHitsLimit) +
+                             " sorted triangles per cone (its shader loops are capped); use -r 1 or --cone-max 0");
 
   // The cones: the CPU's primary rays and Eq. 2's spread, as KdConeTraversal has them.
   std::vector<float> cones;
@@ -71,8 +92,11 @@ ConeFrame traceConesGpu(const ConeStreamTree& tree, const CameraBasis& camera,
   kernel.bindStorage(1, treeData);
   kernel.bindStorage(2, coneData);
   kernel.set("uStreamWidth", uint32_t(width));
+  kernel.set("uRecordFloats", uint32_t(stride));
   kernel.set("uStackSize", stackSize);
-  kernel.set("uCapacity", capacity);
+  kernel.set("uCapacity", gpu.capacity);
+  kernel.set("uTableSize", tableSize);
+  kernel.set("uWorkBudget", workBudget);
   kernel.set("uMaxHits", config.maxHits);
   kernel.set("uNodeCount", tree.nodeCount);
   kernel.set("uNodeBase", tree.nodeBase);
@@ -107,9 +131,10 @@ ConeFrame traceConesGpu(const ConeStreamTree& tree, const CameraBasis& camera,
                                ", " + std::to_string(e / width) + ") meets more than " + std::to_string(capacity) +
                                " triangles, its list's capacity: raise --cone-capacity, or use --cone-max N or -r 1");
     const uint32_t count = std::bit_cast<uint32_t>(r[5]);
-    const float* hits = r + 8 + 3 * stackSize;
+    // The nearest: the sorted list's first entry, or the set's record of it.
+    const float* nearest = config.maxHits > 0 ? r + kConeRecordHeader + 3 * stackSize : r + 9;
     frame.hits[e] = count == 0 ? ConeHitRecord{0, kNoHit, kInfinity}
-                               : ConeHitRecord{count, std::bit_cast<uint32_t>(hits[1]), hits[0]};
+                               : ConeHitRecord{count, std::bit_cast<uint32_t>(nearest[1]), nearest[0]};
     frame.nodes[e] = std::bit_cast<uint32_t>(r[6]);
     frame.triangles[e] = std::bit_cast<uint32_t>(r[7]);
   }

@@ -141,8 +141,12 @@ std::string summaryText(const RunReport& r, bool withStats) {
   text += format("%s: %zu triangles; %s renderer, %s (build %.1f ms, %.2f floats/triangle)%s%s\n", r.scene.c_str(),
                  r.triangles, r.renderer.c_str(), s.name.c_str(), s.buildMs, s.floatsPerTriangle,
                  r.glRenderer ? " on " : "", r.glRenderer ? r.glRenderer->c_str() : "");
-  text += format("%dx%d, %d bounces, %zu view(s): %.0f rays in %.2f ms per frame = %.3f Mrays/s (%.0f passes)\n",
-                 r.width, r.height, r.bounces, r.angles, r.rays, r.frameMs, r.mraysPerS, r.passes);
+  if (r.cone)  // one cone per pixel and no bounces: cones per second says more than Mrays/s
+    text += format("%dx%d, %zu view(s): %.0f cones in %.2f ms per frame = %.0f cones/s\n", r.width, r.height, r.angles,
+                   r.rays, r.frameMs, r.frameMs > 0 ? r.rays * 1000.0 / r.frameMs : 0.0);
+  else
+    text += format("%dx%d, %d bounces, %zu view(s): %.0f rays in %.2f ms per frame = %.3f Mrays/s (%.0f passes)\n",
+                   r.width, r.height, r.bounces, r.angles, r.rays, r.frameMs, r.mraysPerS, r.passes);
   return text;
 }
 

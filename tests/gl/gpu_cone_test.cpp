@@ -3,13 +3,19 @@
 // and the same nodes and triangle references per cone, at loop limits 3 and
 // 64 (the state resumes across passes), with and without --cone-max.
 #include <cmath>
+#include <cstring>
 #include <numbers>
+#include <random>
 #include <stdexcept>
 
 #include <gtest/gtest.h>
 
+#include "accel/cone/cone_tests.h"
 #include "accel/cone/cone_traversal.h"
 #include "render/gpu_cone_tracer.h"
+#include "stream/inout_stream.h"
+#include "stream/storage_buffer.h"
+#include "stream/stream_kernel.h"
 #include "tests/gl_test_support.h"
 #include "tests/test_meshes.h"
 
@@ -76,6 +82,146 @@ INSTANTIATE_TEST_SUITE_P(Cones, GpuCone,
                            return std::string(info.param.bvh ? "kkbvh" : "kd") + "_deg" + std::to_string(int(info.param.degrees * 10)) + "_max" +
                                   std::to_string(info.param.maxHits) + "_l" + std::to_string(info.param.loopLimit);
                          });
+
+struct ConeTriangleCase {
+  Cone cone;
+  Triangle tri;
+};
+
+struct ConeTriangleResult {
+  bool met;
+  float t;
+};
+
+// coneMeetsTriangle in GLSL (kernels_glsl/cone/cone_tests.glsl through
+// test_functions.frag's TEST_CONE_TRIANGLE), one case per element.
+std::vector<ConeTriangleResult> coneTriangleOnGpu(const std::vector<ConeTriangleCase>& cases) {
+  const int width = int(std::min<size_t>(cases.size(), 1024)), height = int((cases.size() + width - 1) / width);
+  std::vector<float> data(size_t(width) * height * 32, 0.0f);
+  const auto pushDouble = [](float* out, double x) {
+    uint64_t b;
+    std::memcpy(&b, &x, sizeof b);
+    const uint32_t lo = uint32_t(b), hi = uint32_t(b >> 32);
+    std::memcpy(out, &lo, 4);
+    std::memcpy(out + 1, &hi, 4);
+  };
+  for (size_t i = 0; i < cases.size(); ++i) {
+    float* c = &data[32 * i];
+    const Cone& cone = cases[i].cone;
+    const Triangle& tri = cases[i].tri;
+    for (int k = 0; k < 3; ++k) {
+      c[k] = cone.apex[k];
+      c[3 + k] = tri.v0[k];
+      c[6 + k] = tri.v1[k];
+      c[9 + k] = tri.v2[k];
+    }
+    // As render/gpu_cone_tracer.cpp hands them to the cone kernels.
+    const glm::dvec3 v = glm::normalize(glm::dvec3(cone.axis));
+    for (int k = 0; k < 3; ++k) pushDouble(c + 12 + 2 * k, v[k]);
+    pushDouble(c + 18, std::cos(double(cone.halfAngle)));
+    pushDouble(c + 20, std::sin(double(cone.halfAngle)));
+  }
+  StorageBuffer buffer("cone/triangle cases");
+  buffer.upload(data);
+  InOutStream out(width, height, 1);
+  StreamKernel kernel("cone triangle", "test_functions.frag", StreamKernel::Depth::Test, {"TEST_CONE_TRIANGLE"});
+  kernel.bindStorage(0, buffer);
+  kernel.set("uWidth", width);
+  out.enable();
+  out.clearDepth(1.0f);
+  out.setWriteSurfaces({0});
+  kernel.execute();
+  out.disable();
+  const std::vector<glm::vec4> texels = out.read(0);
+  std::vector<ConeTriangleResult> results(cases.size());
+  for (size_t i = 0; i < cases.size(); ++i) results[i] = {texels[i].x != 0.0f, texels[i].y};
+  return results;
+}
+
+// Random cones and triangles, and cones whose surface passes through a
+// vertex or touches an edge to within rounding: the exact test's borderline.
+std::vector<ConeTriangleCase> coneTriangleCases() {
+  std::mt19937 rng(2020);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f), angle(0.0005f, 0.2f);
+  std::vector<ConeTriangleCase> cases;
+  for (int i = 0; i < 6000; ++i) {
+    Cone cone;
+    cone.apex = glm::vec3(u(rng), u(rng), u(rng) + 4.0f);
+    const glm::vec3 target(0.6f * u(rng), 0.6f * u(rng), 0.0f);
+    cone.axis = glm::normalize(target - cone.apex);
+    const glm::vec3 centre(0.3f * u(rng), 0.3f * u(rng), 0.3f * u(rng));
+    const float size = i % 3 == 0 ? 0.02f : 0.3f;
+    Triangle tri{centre + size * glm::vec3(u(rng), u(rng), u(rng)), centre + size * glm::vec3(u(rng), u(rng), u(rng)),
+                 centre + size * glm::vec3(u(rng), u(rng), u(rng))};
+    cone.halfAngle = angle(rng);
+    if (i % 2 == 1) {
+      // Borderline: the least half-angle at which the C++ test meets the
+      // triangle (bisected), nudged by up to two float ulps either way.
+      float lo = 0.0f, hi = 1.2f, t;
+      cone.halfAngle = hi;
+      if (!coneMeetsTriangle(cone, tri, t)) continue;
+      for (int k = 0; k < 40; ++k) {
+        cone.halfAngle = 0.5f * (lo + hi);
+        (coneMeetsTriangle(cone, tri, t) ? hi : lo) = cone.halfAngle;
+      }
+      float h = hi;
+      for (int k = int(rng() % 5) - 2; k != 0; k += k > 0 ? -1 : 1) h = std::nextafter(h, k > 0 ? 2.0f : 0.0f);
+      cone.halfAngle = h;
+    }
+    cases.push_back({cone, tri});
+  }
+  return cases;
+}
+
+// The GLSL exact test is the C++ one operation for operation (fp64 in the
+// shader, no fused multiply-adds): the same verdict and the same t, bit for
+// bit, borderline cases included.
+TEST_F(GlTest, ConeTriangleTestMatchesCpp) {
+  const std::vector<ConeTriangleCase> cases = coneTriangleCases();
+  const std::vector<ConeTriangleResult> gpu = coneTriangleOnGpu(cases);
+  size_t met = 0, mismatches = 0;
+  for (size_t i = 0; i < cases.size(); ++i) {
+    float t = 0.0f;
+    const bool cpu = coneMeetsTriangle(cases[i].cone, cases[i].tri, t);
+    met += cpu;
+    if ((gpu[i].met != cpu || (cpu && gpu[i].t != t)) && mismatches++ < 10)
+      ADD_FAILURE() << "case " << i << ": cpu " << cpu << " t " << t << ", gpu " << gpu[i].met << " t " << gpu[i].t;
+  }
+  EXPECT_EQ(mismatches, 0u);
+  EXPECT_GT(met, cases.size() / 5) << "the cases should meet and miss";
+  EXPECT_LT(met, cases.size() * 4 / 5) << "the cases should meet and miss";
+}
+
+// Passes long enough to meet llvmpipe's loop cap (stream/shader_loop_budget.h):
+// cones meeting hundreds of triangles each of a dense sphere, the whole
+// traversal in one pass (-l 100000), with the --cone-max 0 set and a long
+// sorted list. Without the kernels' work budget the cap cut leaves and list
+// shifts short: wrong counts, without an error.
+TEST_F(GlTest, GpuConesKeepEveryTriangleInLongPasses) {
+  const std::vector<Triangle> tris = testmesh::uvSphere(90, 120, glm::vec3(0.0f), 0.8f);
+  const CameraBasis camera = coneCamera(8);
+  const float halfAngle = float(3.0 * std::numbers::pi / 180.0);
+  const AccelBuildConfig build;
+  for (const bool bvh : {false, true})
+    for (const uint32_t maxHits : {0u, 1500u}) {
+      SCOPED_TRACE(std::string(bvh ? "kk-bvh" : "kd-tree") + " --cone-max " + std::to_string(maxHits));
+      const ConeQueryConfig config{maxHits};
+      const ConeFrame cpu = traceCones(bvh ? *makeKkBvhCone(tris, build) : *makeKdTreeCone(tris, build), camera,
+                                       halfAngle, config, 1);
+      const ConeFrame gpu = traceConesGpu(bvh ? makeKkBvhStreamCone(tris, build) : makeKdTreeStreamCone(tris, build),
+                                          camera, halfAngle, config, GpuConeConfig{100000, 8192});
+      uint32_t most = 0;
+      for (size_t i = 0; i < cpu.hits.size(); ++i) {
+        ASSERT_EQ(gpu.hits[i].count, cpu.hits[i].count) << "pixel " << i;
+        EXPECT_EQ(gpu.hits[i].id, cpu.hits[i].id) << "pixel " << i;
+        EXPECT_EQ(gpu.hits[i].t, cpu.hits[i].t) << "pixel " << i;
+        EXPECT_EQ(gpu.nodes[i], cpu.nodes[i]) << "pixel " << i;
+        EXPECT_EQ(gpu.triangles[i], cpu.triangles[i]) << "pixel " << i;
+        most = std::max(most, cpu.hits[i].count);
+      }
+      EXPECT_GT(most, 500u) << "some cones should meet hundreds of triangles";
+    }
+}
 
 TEST_F(GlTest, GpuConeListOverflowIsAnError) {
   const std::vector<Triangle> tris = coneMesh();
