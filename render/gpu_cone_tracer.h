@@ -18,6 +18,10 @@ struct GpuConeConfig {
   // more is a one-line error (never a silently short count). With --cone-max
   // N the list holds N.
   uint32_t capacity = 1024;
+  // Records (stacks and hits) per band of cones traced together, at most:
+  // also capped by the driver's storage-buffer block size. Tests make it
+  // small to run several bands.
+  uint64_t maxBandBytes = uint64_t(1) << 30;
 };
 
 // Throws std::runtime_error (one line) when a list overflows, --cone-max

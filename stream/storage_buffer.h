@@ -24,6 +24,8 @@ class StorageBuffer {
 
   // Makes the buffer hold at least `floats` floats (all zero after growing). Throws GlError naming the data, e.g. when out of GPU memory.
   void reserve(uint64_t floats);
+  // Sets every float to zero (a kernel's per-element state, before reuse).
+  void clear();
   uint64_t floats() const { return floats_; }
   GLuint buffer() const { return buffer_; }
 

@@ -35,6 +35,7 @@ layout(std430, binding = 2) readonly buffer ConeInputs { float cones[]; };
 const uint CONE_HEADER = 12u;
 
 uniform uint uStreamWidth;
+uniform uint uElementCount;  // cones in this band; the last row's rest is padding
 uniform uint uRecordFloats;
 uniform uint uStackSize;
 uniform uint uCapacity;   // distinct triangles a --cone-max 0 set may hold
@@ -65,8 +66,14 @@ uint bitsAt(uint i) { return floatBitsToUint(tree[i]); }
 
 double doubleAt(uint i) { return packDouble2x32(uvec2(floatBitsToUint(cones[i]), floatBitsToUint(cones[i + 1u]))); }
 
-// Reads element e's cone and record; phase 0 starts a fresh state.
-void loadRecord(uint e) {
+// Reads the cone and record of the element at `at`; phase 0 starts a fresh
+// state, and padding beyond the band reads as done.
+void loadRecord(uvec2 at) {
+  uint e = at.y * uStreamWidth + at.x;
+  if (e >= uElementCount) {
+    phase = 2.0;
+    return;
+  }
   base = e * uRecordFloats;
   stackBase = base + CONE_HEADER;
   hitBase = stackBase + 3u * uStackSize;

@@ -12,8 +12,7 @@
 // uTriBase.
 
 void main() {
-  uvec2 at = uvec2(gl_FragCoord.xy);
-  loadRecord(at.y * uStreamWidth + at.x);
+  loadRecord(uvec2(gl_FragCoord.xy));
   if (phase >= 2.0) discard;
   if (phase == 0.0) {
     phase = 1.0;

@@ -223,6 +223,31 @@ TEST_F(GlTest, GpuConesKeepEveryTriangleInLongPasses) {
     }
 }
 
+// Cones traced in bands (records too large for one storage buffer): each
+// band its own stream, a partial last row included, the same buffers.
+TEST_F(GlTest, GpuConeBandsGiveTheSameBuffers) {
+  const std::vector<Triangle> tris = coneMesh();
+  const AccelBuildConfig build;
+  const CameraBasis camera = coneCamera(20);
+  const float halfAngle = float(2.5 * std::numbers::pi / 180.0);
+  for (const bool bvh : {false, true}) {
+    const ConeStreamTree tree = bvh ? makeKkBvhStreamCone(tris, build) : makeKdTreeStreamCone(tris, build);
+    const ConeFrame whole = traceConesGpu(tree, camera, halfAngle, ConeQueryConfig{0}, GpuConeConfig{64, 64});
+    // 64 set slots + header + stack: 37 cones' records per band, 11 bands.
+    const uint64_t stride = 12 + 3 * tree.stackSize + 128;
+    const ConeFrame bands = traceConesGpu(tree, camera, halfAngle, ConeQueryConfig{0}, GpuConeConfig{64, 64, 37 * stride * 4});
+    size_t met = 0;
+    for (size_t i = 0; i < whole.hits.size(); ++i) {
+      ASSERT_EQ(bands.hits[i].count, whole.hits[i].count) << "pixel " << i;
+      EXPECT_EQ(bands.hits[i].id, whole.hits[i].id) << "pixel " << i;
+      EXPECT_EQ(bands.hits[i].t, whole.hits[i].t) << "pixel " << i;
+      EXPECT_EQ(bands.nodes[i], whole.nodes[i]) << "pixel " << i;
+      met += whole.hits[i].count > 0;
+    }
+    EXPECT_GT(met, whole.hits.size() / 4);
+  }
+}
+
 TEST_F(GlTest, GpuConeListOverflowIsAnError) {
   const std::vector<Triangle> tris = coneMesh();
   const float halfAngle = float(10.0 * std::numbers::pi / 180.0);
