@@ -61,9 +61,11 @@ void main() {
   for (uint i = 0u; i < 4u; ++i) f[i] = vec3(storage[b + 3u * i], storage[b + 3u * i + 1u], storage[b + 3u * i + 2u]);
   double d[5];
   for (uint i = 0u; i < 5u; ++i)
-    d[i] = packDouble2x32(uvec2(floatBitsToUint(storage[b + 12u + 2u * i]), floatBitsToUint(storage[b + 13u + 2u * i])));
+    d[i] = packDouble2x32(
+        uvec2(floatBitsToUint(storage[b + 12u + 2u * i]), floatBitsToUint(storage[b + 13u + 2u * i])));
   float t;
-  bool met = coneMeetsTriangle(dvec3(f[0]), dvec3(d[0], d[1], d[2]), d[3], d[4], dvec3(f[1]), dvec3(f[2]), dvec3(f[3]), t);
+  bool met =
+      coneMeetsTriangle(dvec3(f[0]), dvec3(d[0], d[1], d[2]), d[3], d[4], dvec3(f[1]), dvec3(f[2]), dvec3(f[3]), t);
   outResult = vec4(met ? 1.0 : 0.0, t, 0.0, 0.0);
 #endif
 }

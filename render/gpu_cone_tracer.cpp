@@ -65,7 +65,8 @@ ConeFrame traceConesGpu(const ConeStreamTree& tree, const CameraBasis& camera,
   const uint32_t workBudget = shaderLoopBudget(glRenderer ? glRenderer : "");
   const uint64_t maxHitsLimit = workBudget > 200 ? workBudget - 200 : 0;
   if (config.maxHits > maxHitsLimit)
-    throw std::runtime_error("--cone-max " + std::to_string(config.maxHits) + ": the stream path on this driver keeps at most " +
+    throw std::runtime_error("--cone-max " + std::to_string(config.maxHits) +
+                             ": the stream path on this driver keeps at most " +
                              std::to_string(maxHitsLimit) +
                              " sorted triangles per cone (its shader loops are capped); use -r 1 or --cone-max 0");
 

@@ -37,6 +37,18 @@ CameraBasis coneCamera(int size) {
   return makeCameraBasis(spec, size, size);
 }
 
+// Every pixel: the same count, nearest id and t, nodes and triangle references.
+void expectSameFrames(const ConeFrame& expected, const ConeFrame& actual) {
+  ASSERT_EQ(actual.hits.size(), expected.hits.size());
+  for (size_t i = 0; i < expected.hits.size(); ++i) {
+    ASSERT_EQ(actual.hits[i].count, expected.hits[i].count) << "pixel " << i;
+    EXPECT_EQ(actual.hits[i].id, expected.hits[i].id) << "pixel " << i;
+    EXPECT_EQ(actual.hits[i].t, expected.hits[i].t) << "pixel " << i;
+    EXPECT_EQ(actual.nodes[i], expected.nodes[i]) << "pixel " << i;
+    EXPECT_EQ(actual.triangles[i], expected.triangles[i]) << "pixel " << i;
+  }
+}
+
 struct GpuConeCase {
   bool bvh;  // kk-bvh's tree (bvh_cone.frag), else the kd-tree's (kd_cone.frag)
   float degrees;
@@ -57,14 +69,9 @@ TEST_P(GpuCone, SameBuffersAsCpu) {
                                    halfAngle, config, 1);
   const ConeFrame gpu = traceConesGpu(c.bvh ? makeKkBvhStreamCone(tris, build) : makeKdTreeStreamCone(tris, build),
                                       camera, halfAngle, config, GpuConeConfig{c.loopLimit});
-  ASSERT_EQ(gpu.hits.size(), cpu.hits.size());
+  ASSERT_NO_FATAL_FAILURE(expectSameFrames(cpu, gpu));
   size_t met = 0, several = 0;
   for (size_t i = 0; i < cpu.hits.size(); ++i) {
-    ASSERT_EQ(gpu.hits[i].count, cpu.hits[i].count) << "pixel " << i;
-    EXPECT_EQ(gpu.hits[i].id, cpu.hits[i].id) << "pixel " << i;
-    EXPECT_EQ(gpu.hits[i].t, cpu.hits[i].t) << "pixel " << i;
-    EXPECT_EQ(gpu.nodes[i], cpu.nodes[i]) << "pixel " << i;
-    EXPECT_EQ(gpu.triangles[i], cpu.triangles[i]) << "pixel " << i;
     met += cpu.hits[i].count > 0;
     several += cpu.hits[i].count > 1;
   }
@@ -210,15 +217,9 @@ TEST_F(GlTest, GpuConesKeepEveryTriangleInLongPasses) {
                                        halfAngle, config, 1);
       const ConeFrame gpu = traceConesGpu(bvh ? makeKkBvhStreamCone(tris, build) : makeKdTreeStreamCone(tris, build),
                                           camera, halfAngle, config, GpuConeConfig{100000, 8192});
+      ASSERT_NO_FATAL_FAILURE(expectSameFrames(cpu, gpu));
       uint32_t most = 0;
-      for (size_t i = 0; i < cpu.hits.size(); ++i) {
-        ASSERT_EQ(gpu.hits[i].count, cpu.hits[i].count) << "pixel " << i;
-        EXPECT_EQ(gpu.hits[i].id, cpu.hits[i].id) << "pixel " << i;
-        EXPECT_EQ(gpu.hits[i].t, cpu.hits[i].t) << "pixel " << i;
-        EXPECT_EQ(gpu.nodes[i], cpu.nodes[i]) << "pixel " << i;
-        EXPECT_EQ(gpu.triangles[i], cpu.triangles[i]) << "pixel " << i;
-        most = std::max(most, cpu.hits[i].count);
-      }
+      for (const ConeHitRecord& h : cpu.hits) most = std::max(most, h.count);
       EXPECT_GT(most, 500u) << "some cones should meet hundreds of triangles";
     }
 }
@@ -235,15 +236,11 @@ TEST_F(GlTest, GpuConeBandsGiveTheSameBuffers) {
     const ConeFrame whole = traceConesGpu(tree, camera, halfAngle, ConeQueryConfig{0}, GpuConeConfig{64, 64});
     // 64 set slots + header + stack: 37 cones' records per band, 11 bands.
     const uint64_t stride = 12 + 3 * tree.stackSize + 128;
-    const ConeFrame bands = traceConesGpu(tree, camera, halfAngle, ConeQueryConfig{0}, GpuConeConfig{64, 64, 37 * stride * 4});
+    const ConeFrame bands =
+        traceConesGpu(tree, camera, halfAngle, ConeQueryConfig{0}, GpuConeConfig{64, 64, 37 * stride * 4});
+    ASSERT_NO_FATAL_FAILURE(expectSameFrames(whole, bands));
     size_t met = 0;
-    for (size_t i = 0; i < whole.hits.size(); ++i) {
-      ASSERT_EQ(bands.hits[i].count, whole.hits[i].count) << "pixel " << i;
-      EXPECT_EQ(bands.hits[i].id, whole.hits[i].id) << "pixel " << i;
-      EXPECT_EQ(bands.hits[i].t, whole.hits[i].t) << "pixel " << i;
-      EXPECT_EQ(bands.nodes[i], whole.nodes[i]) << "pixel " << i;
-      met += whole.hits[i].count > 0;
-    }
+    for (const ConeHitRecord& h : whole.hits) met += h.count > 0;
     EXPECT_GT(met, whole.hits.size() / 4);
   }
 }
