@@ -41,6 +41,9 @@ struct GpuTraversalConfig {
   // Texels per ConstInputStream texture page, 0 = the largest texture the GL
   // accepts (--page-texels; smaller values exercise paging on small scenes).
   uint64_t maxPageTexels = 0;
+  // --compact: the GPU renderer gathers each generation's live rays into whole
+  // 4x4 blocks before tracing them (render/gpu_renderer.h); structures ignore it.
+  bool compact = false;
 };
 
 // Shared by the implementations: binds the ray surfaces a traversal kernel

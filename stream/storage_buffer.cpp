@@ -26,6 +26,13 @@ void StorageBuffer::reserve(uint64_t floats) {
   floats_ = floats;
 }
 
+void StorageBuffer::zero(uint64_t floats) {
+  const float zero = 0.0f;
+  glClearNamedBufferSubData(buffer_, GL_R32F, 0, GLsizeiptr(std::min(floats, floats_) * sizeof(float)), GL_RED, GL_FLOAT,
+                            &zero);
+  checkGlError("clearing " + what_);
+}
+
 void StorageBuffer::upload(const std::vector<float>& data) {
   if (buffer_) glDeleteBuffers(1, &buffer_);
   buffer_ = 0;

@@ -29,6 +29,8 @@ class StorageBuffer {
 
   // Replaces the contents with `data` (read-only for kernels after this), e.g. a tree's nodes.
   void upload(const std::vector<float>& data);
+  // Sets the first `floats` floats to zero on the GPU (a counter a kernel then increments).
+  void zero(uint64_t floats);
   // The first `floats` floats, for tests.
   std::vector<float> read(uint64_t floats) const;
 
