@@ -69,7 +69,7 @@ struct RunReport {
   // the JSON's "dacrt" object, only in runs of a batch tracer.
   std::optional<FilterStats> dacrt;
   std::string shading = "thesis";  // --shading: thesis, whitted or ao
-  bool compact = false;            // --compact on: live-ray compaction per generation (-r 2 only)
+  std::string compact = "off";     // --compact: off, on or always (-r 2 only; off elsewhere)
   std::optional<ConeReport> cone;  // --cone: the JSON's "cone" object
 };
 

@@ -1,4 +1,4 @@
-// --compact on (stream/stream_compaction.h): every stream row traces the
+// --compact always and on (stream/stream_compaction.h): every stream row traces the
 // same rays to the same results whether each generation's live rays are
 // gathered into whole 4x4 blocks or not. Cornell 32x32 with Whitted shading
 // (only mirror and glass pixels and lit hits continue, so later generations
@@ -30,7 +30,7 @@ std::vector<std::string> streamRows() {
   return names;
 }
 
-FrameResult render(const Scene& scene, GpuTraversal& traversal, ShadingConfig shading, int bounces, bool compact) {
+FrameResult render(const Scene& scene, GpuTraversal& traversal, ShadingConfig shading, int bounces, Compaction compact) {
   GpuRenderer renderer(scene, traversal, kSize, kSize, 0, shading, compact);
   return renderer.render(scene.camera, bounces, true);
 }
@@ -45,8 +45,8 @@ TEST_P(CompactOnOff, SameImageHitsAndCountsAsWithout) {
   for (const ShadingMode mode : {ShadingMode::Whitted, ShadingMode::Thesis}) {
     ShadingConfig shading;
     shading.mode = mode;
-    const FrameResult off = render(scene, *traversal, shading, 3, false);
-    const FrameResult on = render(scene, *traversal, shading, 3, true);
+    const FrameResult off = render(scene, *traversal, shading, 3, Compaction::Off);
+    const FrameResult on = render(scene, *traversal, shading, 3, Compaction::Always);
     SCOPED_TRACE(shadingModeName(mode));
     EXPECT_GT(on.stats.rays, uint64_t(kSize * kSize));  // secondary generations ran
     EXPECT_EQ(on.rgb, off.rgb);
@@ -55,6 +55,9 @@ TEST_P(CompactOnOff, SameImageHitsAndCountsAsWithout) {
     EXPECT_EQ(on.stats.passes, off.stats.passes);
     EXPECT_EQ(on.stats.steps, off.stats.steps);
     EXPECT_EQ(on.stats.triangleTests, off.stats.triangleTests);
+    const FrameResult sparse = render(scene, *traversal, shading, 3, Compaction::On);  // later generations only
+    EXPECT_EQ(sparse.rgb, off.rgb);
+    EXPECT_EQ(sparse.steps, off.steps);
     ASSERT_EQ(on.primaryHits.size(), off.primaryHits.size());
     for (size_t i = 0; i < on.primaryHits.size(); ++i) {
       const HitRecord a = on.primaryHits[i], b = off.primaryHits[i];
@@ -70,7 +73,7 @@ TEST_P(CompactOnOff, PrimaryHitsEqualBruteForce) {
   GpuTraversalConfig config;
   config.loopLimit = 3;
   const auto traversal = makeStreamStructure(GetParam(), scene.triangles, config);
-  const FrameResult on = render(scene, *traversal, ShadingConfig{}, 1, true);
+  const FrameResult on = render(scene, *traversal, ShadingConfig{}, 1, Compaction::Always);
   const CameraBasis basis = makeCameraBasis(scene.camera, kSize, kSize);
   int hits = 0;
   for (int y = 0; y < kSize; ++y)
@@ -95,7 +98,8 @@ TEST_F(GlTest, CompactionOfAStreamOfOddSize) {
   const auto traversal = makeStreamStructure("kk-bvh", scene.triangles, config);
   ShadingConfig shading;
   shading.mode = ShadingMode::Whitted;
-  GpuRenderer off(scene, *traversal, 30, 19, 0, shading, false), on(scene, *traversal, 30, 19, 0, shading, true);
+  GpuRenderer off(scene, *traversal, 30, 19, 0, shading, Compaction::Off);
+  GpuRenderer on(scene, *traversal, 30, 19, 0, shading, Compaction::On);
   const FrameResult a = off.render(scene.camera, 3, false), b = on.render(scene.camera, 3, false);
   EXPECT_EQ(a.rgb, b.rgb);
   EXPECT_EQ(a.steps, b.steps);
