@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
-"""--compact off against on (issue 17, item 3): runs made back to back,
+"""--compact off, on and always (issue 17, item 3): runs made back to back,
 alternated, in one process; the fastest frame of each cell over the rounds.
-Usage: python3 docs/bench-speed/compact.py [rounds]   (from the repository root)"""
+Usage: python3 docs/bench-speed/compact.py [rounds [case filter]]   (from the repository root;
+the filter keeps the cases whose label contains it, e.g. whitted)"""
 import json, subprocess, sys, tempfile, os
 
 ROUNDS = int(sys.argv[1]) if len(sys.argv) > 1 else 2
@@ -11,7 +12,11 @@ CASES = [  # (label, arguments)
     ("bunny 512, -b 1, -l 100000", "-s bunny -w 512 -b 1 -l 100000 -m 3"),
     ("bunny 512, -b 3, -l 20", "-s bunny -w 512 -b 3 -l 20 -m 2"),
     ("kitchen 256, whitted -b 6, -l 20", "-s kitchen -w 256 --shading whitted -b 6 -l 20 -m 2"),
+    ("cornell 256, whitted -b 6, -l 3", "-s cornell -w 256 --shading whitted -b 6 -l 3 -m 3"),
 ]
+MODES = ["off", "on", "always"]
+if len(sys.argv) > 2:
+    CASES = [c for c in CASES if sys.argv[2] in c[0]]
 
 best = {}
 with tempfile.TemporaryDirectory() as tmp:
@@ -19,7 +24,7 @@ with tempfile.TemporaryDirectory() as tmp:
     for rnd in range(ROUNDS):
         for label, args in CASES:
             for s in STRUCTURES:
-                for compact in ("off", "on"):
+                for compact in MODES:
                     cmd = f"build/passtrace -r 2 -a {s} {args} --compact {compact} --json {out}".split()
                     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
                     j = json.load(open(out))
@@ -30,10 +35,11 @@ with tempfile.TemporaryDirectory() as tmp:
                     print(rnd, label, s, compact, f"{ms:.1f} ms", f"{j['rays'] / ms / 1e3:.3f} Mrays/s",
                           j["passes"], "passes", file=sys.stderr, flush=True)
 
-print("| case | structure | passes | rays | off Mrays/s | on Mrays/s | on / off |")
-print("|---|---|---|---|---|---|---|")
+print("| case | structure | passes | rays | off Mrays/s | on | always | on / off | always / off |")
+print("|---|---|---|---|---|---|---|---|---|")
 for label, _ in CASES:
     for s in STRUCTURES:
-        off, on = best[(label, s, "off")], best[(label, s, "on")]
-        moff, mon = off["rays"] / off["ms"] / 1e3, on["rays"] / on["ms"] / 1e3
-        print(f"| {label} | {s} | {off['passes']} | {off['rays']} | {moff:.3f} | {mon:.3f} | {mon / moff:.2f} |")
+        m = {c: best[(label, s, c)]["rays"] / best[(label, s, c)]["ms"] / 1e3 for c in MODES}
+        off = best[(label, s, "off")]
+        print(f"| {label} | {s} | {off['passes']:.0f} | {off['rays']:.0f} | {m['off']:.3f} | {m['on']:.3f} | "
+              f"{m['always']:.3f} | {m['on'] / m['off']:.2f} | {m['always'] / m['off']:.2f} |")
