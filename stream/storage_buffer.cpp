@@ -28,8 +28,8 @@ void StorageBuffer::reserve(uint64_t floats) {
 
 void StorageBuffer::zero(uint64_t floats) {
   const float zero = 0.0f;
-  glClearNamedBufferSubData(buffer_, GL_R32F, 0, GLsizeiptr(std::min(floats, floats_) * sizeof(float)), GL_RED, GL_FLOAT,
-                            &zero);
+  const GLsizeiptr bytes = GLsizeiptr(std::min(floats, floats_) * sizeof(float));
+  glClearNamedBufferSubData(buffer_, GL_R32F, 0, bytes, GL_RED, GL_FLOAT, &zero);
   checkGlError("clearing " + what_);
 }
 

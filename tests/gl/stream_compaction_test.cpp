@@ -30,7 +30,8 @@ std::vector<std::string> streamRows() {
   return names;
 }
 
-FrameResult render(const Scene& scene, GpuTraversal& traversal, ShadingConfig shading, int bounces, Compaction compact) {
+FrameResult render(const Scene& scene, GpuTraversal& traversal, ShadingConfig shading, int bounces,
+                   Compaction compact) {
   GpuRenderer renderer(scene, traversal, kSize, kSize, 0, shading, compact);
   return renderer.render(scene.camera, bounces, true);
 }
