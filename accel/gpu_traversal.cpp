@@ -31,3 +31,16 @@ uint64_t runTraversalPasses(StreamKernel& kernel, uint64_t active, uint64_t maxP
 }
 
 }  // namespace passtrace
+
+namespace passtrace {
+
+const char* compactionName(Compaction c) {
+  switch (c) {
+    case Compaction::On: return "on";
+    case Compaction::Always: return "always";
+    case Compaction::Off: break;
+  }
+  return "off";
+}
+
+}  // namespace passtrace

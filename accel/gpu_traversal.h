@@ -34,6 +34,17 @@ enum class GridKernels {
   Split    // Purcell's separate traversal and intersection kernels
 };
 
+// Live-ray compaction in the GPU renderer (--compact, stream/stream_compaction.h).
+enum class Compaction {
+  Off,    // the thesis's stream: every generation traced in place
+  On,     // generations with at most kCompactLiveFraction of the elements live are compacted
+  Always  // every generation, even when every element is live (to measure the cost)
+};
+// With more live rays than this fraction, gathering costs more than the
+// culled blocks save (primary rays: every element is live).
+inline constexpr double kCompactLiveFraction = 0.5;
+const char* compactionName(Compaction c);
+
 struct GpuTraversalConfig {
   AccelBuildConfig build;
   int loopLimit = 20;  // traversal steps per element per pass (tracy's -l)
@@ -41,6 +52,9 @@ struct GpuTraversalConfig {
   // Texels per ConstInputStream texture page, 0 = the largest texture the GL
   // accepts (--page-texels; smaller values exercise paging on small scenes).
   uint64_t maxPageTexels = 0;
+  // --compact: whether the GPU renderer gathers a generation's live rays into
+  // whole 4x4 blocks before tracing them (render/gpu_renderer.h); structures ignore it.
+  Compaction compact = Compaction::Off;
 };
 
 // Shared by the implementations: binds the ray surfaces a traversal kernel

@@ -174,6 +174,11 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
   app.add_option("--cone-capacity", o.coneCapacity,
                  "with --cone, -r 2: distinct triangles each cone's list holds (more with --cone-max 0 is an error)")
       ->check(CLI::Range(1u, 1u << 20))->capture_default_str();
+  app.add_option("--compact", o.compact,
+                 "-r 2: gather a generation's live rays into whole 4x4 blocks before tracing them (llvmpipe culls "
+                 "only whole blocks): on when at most half the rays are live, always for every generation; off keeps "
+                 "the thesis's stream")
+      ->check(CLI::IsMember({"off", "on", "always"}))->capture_default_str();
   app.add_flag("--list", o.list, "list the renderers, structures and scenes (with --json: as JSON) and exit");
   app.add_flag("--version", o.version, "print the version and exit");
   if (!helpFooter.empty()) app.footer(std::string(helpFooter));

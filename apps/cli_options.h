@@ -48,6 +48,7 @@ struct Options {
   std::string json;                 // --json FILE (with --list and no FILE: standard output)
   std::string glBackend = "auto";   // --gl-backend
   std::string gridKernels = "merged";  // --grid-kernels: merged or split (Purcell)
+  std::string compact = "off";         // --compact: off, on or always (live-ray compaction, -r 2)
   std::string triangleTest = "moller-trumbore";  // --triangle-test: moller-trumbore or watertight
   std::string kdBuilder = "exact";      // --kd-builder: exact or binned SAH
   std::string kdTermination = "thesis";  // --kd-termination: thesis (-e/-d) or papay (seed 003)

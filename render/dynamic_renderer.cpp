@@ -74,7 +74,7 @@ class DynamicStream final : public DynamicRenderer {
       traversal_ = std::make_unique<GpuKdDynamicTraversal>(trees_, variant_, scene_.triangles, config_.gpu);
       ms += traversal_->firstFlattenMs();
       renderer_ = std::make_unique<GpuRenderer>(scene_, *traversal_, config_.width, config_.height,
-                                                config_.gpu.maxPageTexels, config_.shading);
+                                                config_.gpu.maxPageTexels, config_.shading, config_.gpu.compact);
     } else {
       ms += traversal_->update(scene_.triangles);
       renderer_->trianglesMoved();

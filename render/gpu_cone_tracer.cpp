@@ -111,7 +111,7 @@ ConeFrame traceConesGpu(const ConeStreamTree& tree, const CameraBasis& camera,
     }
     coneData.upload(cones);
     records.reserve(count * stride);
-    if (first > 0) records.clear();
+    if (first > 0) records.zero(count * stride);
     kernel.bindStorage(0, records);
     kernel.bindStorage(2, coneData);
     kernel.set("uStreamWidth", uint32_t(streamWidth));

@@ -21,7 +21,7 @@ using Clock = std::chrono::steady_clock;
 }  // namespace
 
 GpuRenderer::GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width, int height, uint64_t maxPageTexels,
-                         ShadingConfig shading)
+                         ShadingConfig shading, Compaction compact)
     : scene_(scene),
       traversal_(traversal),
       rays_(width, height, kRaySurfaceCount),
@@ -31,7 +31,8 @@ GpuRenderer::GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width,
       raygen_("raygen", "raygen.frag"),
       cull_("cull", "cull.frag", StreamKernel::Depth::Cull),
       shade_("shade", "shade.frag", StreamKernel::Depth::Test, {streamPagesDefine({triangles_.get(), &materials_})}),
-      shading_(shading) {
+      shading_(shading),
+      compact_(compact) {
   cull_.bindInput("uState", rays_, kStateSurface);
   const char* samplers[] = {"uOrigin", "uDirection", "uState", "uHit", "uColor", "uThroughput", "uPending"};
   for (int s : kAllSurfaces) shade_.bindInput(samplers[s], rays_, s);
@@ -43,6 +44,7 @@ GpuRenderer::GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width,
   shade_.set("uAmbient", scene.ambient);
   shade_.set("uEpsilon", secondaryRayEpsilon(scene));
   if (shading.mode != ShadingMode::Thesis) makeMixKernel();
+  if (compact != Compaction::Off) compaction_ = std::make_unique<StreamCompaction>(rays_, kStateSurface);
 }
 
 void GpuRenderer::makeMixKernel() {
@@ -134,7 +136,16 @@ FrameResult GpuRenderer::render(const CameraSpec& camera, int bounces, bool capt
     const uint64_t active = elements - retireFinished();
     if (active == 0) break;
     result.stats.rays += active;
-    result.stats.passes += traversal_.trace(rays_, active, [this] { return retireFinished(); });
+    const bool sparse = double(active) <= kCompactLiveFraction * double(elements);
+    if (compact_ == Compaction::Always || (compact_ == Compaction::On && sparse)) {
+      // The traversal runs on the compact stream; rays_'s depth keeps marking
+      // the live rays until scatter() has copied their results back.
+      compaction_->gather(active);
+      result.stats.passes += traversal_.trace(compaction_->compact(), active, [this] { return compaction_->retire(); });
+      compaction_->scatter();
+    } else {
+      result.stats.passes += traversal_.trace(rays_, active, [this] { return retireFinished(); });
+    }
 
     if (bounce == 1 && captureHits) {
       glFinish();

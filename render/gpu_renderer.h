@@ -12,6 +12,7 @@
 #include "stream/const_input_stream.h"
 #include "stream/inout_stream.h"
 #include "stream/storage_buffer.h"
+#include "stream/stream_compaction.h"
 #include "stream/stream_kernel.h"
 
 namespace passtrace {
@@ -20,8 +21,10 @@ class GpuRenderer {
  public:
   // `scene` and `traversal` must outlive the renderer. `maxPageTexels` as in
   // GpuTraversalConfig, for the shading data.
+  // `compact`: which generations' live rays are gathered into whole 4x4 blocks
+  // before their traversal passes (--compact, stream/stream_compaction.h).
   GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width, int height, uint64_t maxPageTexels = 0,
-              ShadingConfig shading = {});
+              ShadingConfig shading = {}, Compaction compact = Compaction::Off);
 
   // Renders one frame with `bounces` traces (1 = primary rays only). Timing
   // covers ray generation through the last shading pass, ended by glFinish;
@@ -51,6 +54,8 @@ class GpuRenderer {
   std::unique_ptr<ConstInputStream> whittedMaterials_;
   std::unique_ptr<StorageBuffer> whittedStacks_;
   std::unique_ptr<StreamKernel> mixShade_;
+  Compaction compact_;
+  std::unique_ptr<StreamCompaction> compaction_;  // unless --compact off
 };
 
 }  // namespace passtrace

@@ -42,7 +42,8 @@ class StreamTracer final : public Renderer {
  public:
   StreamTracer(std::unique_ptr<GpuTraversal> structure, const Scene& scene, const RendererConfig& config)
       : structure_(std::move(structure)),
-        renderer_(scene, *structure_, config.width, config.height, config.gpu.maxPageTexels, config.shading),
+        renderer_(scene, *structure_, config.width, config.height, config.gpu.maxPageTexels, config.shading,
+                  config.gpu.compact),
         config_(config) {}
   FrameResult render(const CameraSpec& camera, bool captureHits) override {
     return renderer_.render(camera, config_.bounces, captureHits);

@@ -72,6 +72,7 @@ nlohmann::json toJson(const RunReport& r) {
       {"warnings", r.warnings},
   };
   j["shading"] = r.shading;
+  j["compact"] = r.compact;
   // Only in --frames runs, so that a single frame's keys stay as they were.
   if (!r.sequence.empty()) {
     nlohmann::json sequence = nlohmann::json::array();

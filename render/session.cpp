@@ -175,6 +175,7 @@ void describeRun(const RunSettings& o, const Structure* structure, RunReport& re
   else if (o.renderer != RendererId::OpenGl) report.triangleTest = triangleTestName(o.gpu.build.triangleTest);
   report.width = o.width, report.height = o.height, report.bounces = o.bounces, report.repeats = o.repeats;
   report.shading = shadingModeName(o.shading.mode);
+  report.compact = o.renderer == RendererId::Gpu ? compactionName(o.gpu.compact) : "off";
   report.stepsVisitNodes = structure && o.renderer == RendererId::Cpu && structure->cpuStepsVisitNodes;
 }
 

@@ -58,9 +58,18 @@ InOutStream::~InOutStream() {
 void InOutStream::enable() {
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
   glViewport(0, 0, width_, height_);
+  if (rowLimit_ > 0 && rowLimit_ < height_) {
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, 0, width_, rowLimit_);
+  } else {
+    glDisable(GL_SCISSOR_TEST);
+  }
 }
 
-void InOutStream::disable() { glBindFramebuffer(GL_FRAMEBUFFER, 0); }
+void InOutStream::disable() {
+  glDisable(GL_SCISSOR_TEST);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
 
 void InOutStream::setWriteSurfaces(const std::vector<int>& surfaces) {
   if (surfaces == writeSurfaces_) return;

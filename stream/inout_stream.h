@@ -39,6 +39,10 @@ class InOutStream {
   // Kernel output location k goes to surfaces[k].
   void setWriteSurfaces(const std::vector<int>& surfaces);
 
+  // Kernels executed after enable() run only on the first `rows` rows (a
+  // scissor: llvmpipe then bins nothing beyond them); 0 = every row.
+  void setRowLimit(int rows) { rowLimit_ = rows; }
+
   GLuint surfaceTexture(int surface) const { return surfaces_.at(surface); }
 
   void clearSurface(int surface, const glm::vec4& value);
@@ -65,6 +69,7 @@ class InOutStream {
   GLuint savedDepth_ = 0;  // saveDepth()'s copy; 0 until first used
   std::vector<GLuint> surfaces_;
   std::vector<int> writeSurfaces_;
+  int rowLimit_ = 0;
 };
 
 }  // namespace passtrace

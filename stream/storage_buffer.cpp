@@ -26,10 +26,11 @@ void StorageBuffer::reserve(uint64_t floats) {
   floats_ = floats;
 }
 
-void StorageBuffer::clear() {
+void StorageBuffer::zero(uint64_t floats) {
   if (!buffer_) return;
   const float zero = 0.0f;
-  glClearNamedBufferData(buffer_, GL_R32F, GL_RED, GL_FLOAT, &zero);
+  const GLsizeiptr bytes = GLsizeiptr(std::min(floats, floats_) * sizeof(float));
+  glClearNamedBufferSubData(buffer_, GL_R32F, 0, bytes, GL_RED, GL_FLOAT, &zero);
   checkGlError("clearing " + what_);
 }
 

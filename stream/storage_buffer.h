@@ -24,13 +24,14 @@ class StorageBuffer {
 
   // Makes the buffer hold at least `floats` floats (all zero after growing). Throws GlError naming the data, e.g. when out of GPU memory.
   void reserve(uint64_t floats);
-  // Sets every float to zero (a kernel's per-element state, before reuse).
-  void clear();
   uint64_t floats() const { return floats_; }
   GLuint buffer() const { return buffer_; }
 
   // Replaces the contents with `data` (read-only for kernels after this), e.g. a tree's nodes.
   void upload(const std::vector<float>& data);
+  // Sets the first `floats` floats to zero on the GPU (a counter a kernel then
+  // increments, or per-element state before the buffer is reused).
+  void zero(uint64_t floats);
   // The first `floats` floats, for tests.
   std::vector<float> read(uint64_t floats) const;
 

@@ -1,0 +1,62 @@
+// Compaction, pass 3 (drawn into the ray stream, live elements only): each
+// element copies every surface back from the slot it was gathered to.
+#include "compact/compact_layout.glsl"
+
+layout(early_fragment_tests) in;
+
+uniform sampler2D uSurface0;
+layout(location = 0) out vec4 out0;
+#if SURFACES > 1
+uniform sampler2D uSurface1;
+layout(location = 1) out vec4 out1;
+#endif
+#if SURFACES > 2
+uniform sampler2D uSurface2;
+layout(location = 2) out vec4 out2;
+#endif
+#if SURFACES > 3
+uniform sampler2D uSurface3;
+layout(location = 3) out vec4 out3;
+#endif
+#if SURFACES > 4
+uniform sampler2D uSurface4;
+layout(location = 4) out vec4 out4;
+#endif
+#if SURFACES > 5
+uniform sampler2D uSurface5;
+layout(location = 5) out vec4 out5;
+#endif
+#if SURFACES > 6
+uniform sampler2D uSurface6;
+layout(location = 6) out vec4 out6;
+#endif
+#if SURFACES > 7
+uniform sampler2D uSurface7;
+layout(location = 7) out vec4 out7;
+#endif
+
+void main() {
+  ivec2 from = compactTexel(slotOf[homeIndex(ivec2(gl_FragCoord.xy))]);
+  out0 = texelFetch(uSurface0, from, 0);
+#if SURFACES > 1
+  out1 = texelFetch(uSurface1, from, 0);
+#endif
+#if SURFACES > 2
+  out2 = texelFetch(uSurface2, from, 0);
+#endif
+#if SURFACES > 3
+  out3 = texelFetch(uSurface3, from, 0);
+#endif
+#if SURFACES > 4
+  out4 = texelFetch(uSurface4, from, 0);
+#endif
+#if SURFACES > 5
+  out5 = texelFetch(uSurface5, from, 0);
+#endif
+#if SURFACES > 6
+  out6 = texelFetch(uSurface6, from, 0);
+#endif
+#if SURFACES > 7
+  out7 = texelFetch(uSurface7, from, 0);
+#endif
+}
