@@ -85,7 +85,9 @@ TEST_P(CompactOnOff, PrimaryHitsEqualBruteForce) {
       if (!brute.found()) continue;
       ++hits;
       EXPECT_NEAR(gpu.t, brute.t, 1e-4f * brute.t) << x << "," << y;
-      if (std::abs(gpu.t - brute.t) > 1e-6f * brute.t) EXPECT_EQ(gpu.id, brute.id) << x << "," << y;
+      if (std::abs(gpu.t - brute.t) > 1e-6f * brute.t) {  // not a tie: the same triangle
+        EXPECT_EQ(gpu.id, brute.id) << x << "," << y;
+      }
     }
   EXPECT_GT(hits, kSize * kSize / 2);
 }
