@@ -100,15 +100,15 @@ WIDE_TARGET WIDE_INLINE uint32_t packTest4(const TrianglePack& k, const RayPre& 
   return uint32_t(_mm_movemask_ps(hit));
 }
 
-// A packet of up to 64 rays through one shared stack: a child is visited
+// A packet of up to 32 rays through one shared stack: a child is visited
 // when any live ray of the packet hits its box, and only by the rays that hit
 // it (per-entry ray masks). Each ray performs the same box and pack tests as
 // its single-ray traversal would at the nodes it visits, so its hit is the
 // same up to ties in t (the visiting order is the packet's).
 struct PacketEntry {
   uint32_t ref;
+  uint32_t rays;  // bit r: ray r hit this child's box
   float tNear;    // the least entry distance of those rays
-  uint64_t rays;  // bit r: ray r hit this child's box
 };
 
 WIDE_TARGET void tracePacket(const WideBvh& bvh, const Ray* rays, int count, bool anyHit, Hit* best,
@@ -127,48 +127,44 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const Ray* rays, int count, boo
     heap.resize(bvh.stackSize());
     stack = heap.data();
   }
-  // Rays still looking (shadow rays stop at their first hit).
-  uint64_t alive = count >= 64 ? ~uint64_t(0) : (uint64_t(1) << count) - 1u;
+  uint32_t alive = count >= 32 ? ~0u : (1u << count) - 1u;  // rays still looking (shadow rays stop at their first hit)
   int top = 0;
-  stack[top++] = PacketEntry{0u, -kInfinity, alive};
+  stack[top++] = PacketEntry{0u, alive, -kInfinity};
   while (top > 0) {
     const PacketEntry entry = stack[--top];
     // Rays with a hit nearer than the entry distance of every ray here skip it.
-    uint64_t mask = entry.rays & alive, live = 0;
+    uint32_t mask = entry.rays & alive, live = 0;
     while (mask) {
-      const int r = __builtin_ctzll(mask);
+      const int r = __builtin_ctz(mask);
       mask &= mask - 1;
-      if (entry.tNear < best[r].t) live |= uint64_t(1) << r;
+      if (entry.tNear < best[r].t) live |= 1u << r;
     }
     if (!live) continue;
     if (!wideIsLeaf(entry.ref)) {
       const WideBvhNode& node = bvh.nodes[entry.ref];
-      // The rays' bits per child in two halves: rays 0-31 and 32-63.
-      __m256i childRays[2] = {_mm256_setzero_si256(), _mm256_setzero_si256()};
+      __m256i childRays = _mm256_setzero_si256();
       __m256 childNear = _mm256_set1_ps(kInfinity);
-      for (uint64_t m = live; m;) {
-        const int r = __builtin_ctzll(m);
+      for (uint32_t m = live; m;) {
+        const int r = __builtin_ctz(m);
         m &= m - 1;
         ++steps[r];
         __m256 near, hit;
         boxTest8v(node, pre[r], best[r].t, near, hit);
-        const __m256i bit = _mm256_set1_epi32(int(1u << (r & 31)));
-        childRays[r >> 5] = _mm256_or_si256(childRays[r >> 5], _mm256_and_si256(_mm256_castps_si256(hit), bit));
+        const __m256i bit = _mm256_set1_epi32(int(1u << r));
+        childRays = _mm256_or_si256(childRays, _mm256_and_si256(_mm256_castps_si256(hit), bit));
         childNear = _mm256_min_ps(childNear, _mm256_blendv_ps(childNear, near, hit));
       }
-      alignas(32) uint32_t raysLow[8], raysHigh[8];
+      alignas(32) uint32_t raysOf[8];
       alignas(32) float nearOf[8];
-      _mm256_store_si256(reinterpret_cast<__m256i*>(raysLow), childRays[0]);
-      _mm256_store_si256(reinterpret_cast<__m256i*>(raysHigh), childRays[1]);
+      _mm256_store_si256(reinterpret_cast<__m256i*>(raysOf), childRays);
       _mm256_store_ps(nearOf, childNear);
       // Nearest first for shadow packets too: measured 1.1-1.5x less CPU time per
       // frame with shadow rays than lane order (the single-ray loop showed no gain).
       PacketEntry hits[8];
       int n = 0;
       for (int lane = 0; lane < kWideBvhWidth; ++lane) {
-        const uint64_t raysOf = uint64_t(raysLow[lane]) | uint64_t(raysHigh[lane]) << 32;
-        if (!raysOf) continue;
-        PacketEntry e{node.child[lane], nearOf[lane], raysOf};
+        if (!raysOf[lane]) continue;
+        PacketEntry e{node.child[lane], raysOf[lane], nearOf[lane]};
         int j = n++;
         while (j > 0 && hits[j - 1].tNear > e.tNear) {
           hits[j] = hits[j - 1];
@@ -180,8 +176,8 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const Ray* rays, int count, boo
       continue;
     }
     const uint32_t first = wideLeafFirst(entry.ref), packs = wideLeafPacks(entry.ref);
-    for (uint64_t m = live; m;) {
-      const int r = __builtin_ctzll(m);
+    for (uint32_t m = live; m;) {
+      const int r = __builtin_ctz(m);
       m &= m - 1;
       for (uint32_t p = first; p < first + packs; ++p) {
         const TrianglePack& pack = bvh.packs[p];
@@ -194,7 +190,7 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const Ray* rays, int count, boo
           if (t[lane] < best[r].t) best[r] = Hit{t[lane], u[lane], v[lane], pack.id[lane]};
         }
         if (anyHit && best[r].found()) {
-          alive &= ~(uint64_t(1) << r);
+          alive &= ~(1u << r);
           break;
         }
       }
