@@ -55,17 +55,16 @@ uint64_t CpuRenderer::traceGeneration(std::vector<PathState>& paths, std::vector
   return count;
 }
 
-// Packets of neighbouring pixels, read straight from the paths: per 8x8 tile,
+// Packets of neighbouring pixels, read straight from the paths: primary rays
+// in 8x4 tiles, one packet of 32 each (the fastest of 4x2, 4x4 and 8x4 on
+// bunny, Kitchen and Robots; a common origin); later generations in 8x8 tiles,
 // the shadow rays as packets of up to 64 (a common end at the light; against
-// 16 and 32 per packet, 64 took the least CPU time on Robots) and, for primary
-// rays, the closest-hit rays as packets of 32, i.e. 8x4 pixels (the fastest of
-// 4x2, 4x4 and 8x4 on bunny, Kitchen and Robots); mirror rays one at a time,
-// where packets would mostly carry dead lanes.
+// 16 and 32 per packet, 64 took the least CPU time on Robots); mirror rays one
+// at a time, where packets would mostly carry dead lanes.
 uint64_t CpuRenderer::tracePackets(std::vector<PathState>& paths, std::vector<Hit>& hits, bool primary, int width,
                                    int height) const {
   constexpr size_t kTileW = 8, kTile = kTileW * 8, kClosestPacket = 32;
-  // 8x4 tiles for primary rays: measured 1.15-1.2x less CPU time on the bunny than 8x8 tiles cut in two packets.
-  const size_t kTileH = primary ? 4 : 8;
+  const size_t kTileH = primary ? 4 : 8;  // 8x8 primary tiles measured up to 1.2x slower (noisy; not kept)
   const size_t packetMax[2] = {std::min<size_t>(size_t(accelerator_.packetSize()), kClosestPacket),
                                std::min<size_t>(size_t(accelerator_.packetSize()), kTile)};
   const size_t tilesX = (size_t(width) + kTileW - 1) / kTileW, tilesY = (size_t(height) + kTileH - 1) / kTileH;
