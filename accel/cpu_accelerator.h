@@ -84,6 +84,14 @@ public:
   virtual bool tracesBatches() const { return false; }
   virtual std::optional<FilterStats> traceBatch(const RayBatch& batch, std::span<Hit> hits,
                                                 std::span<RayStats> stats) const;
+  // Packet tracing (bvh8-packet): the renderer cuts each generation into 8x4
+  // pixel tiles and hands over a tile's shadow rays, and in the primary
+  // generation its closest-hit rays, as packets of up to packetSize() rays
+  // read straight from its paths (no per-frame copies; other rays go one at a
+  // time through intersect). 0: no packets. Preferred to traceBatch when both
+  // are offered. hits and stats have one entry per ray; stats are added to.
+  virtual int packetSize() const { return 0; }
+  virtual void tracePacket(std::span<const Ray>, bool /*anyHit*/, std::span<Hit>, std::span<RayStats>) const {}
   virtual std::string name() const = 0;
   virtual AccelStats stats() const = 0;
 };

@@ -21,9 +21,20 @@ class CpuRenderer {
   FrameResult render(const CameraSpec& camera, int width, int height, int bounces, bool captureHits);
 
  private:
+  // The batch path's per-element arrays, kept for all generations of a frame.
+  struct BatchScratch {
+    std::vector<Ray> rays;
+    std::vector<uint8_t> active, anyHit;
+    std::vector<RayStats> stats;
+  };
   // One bounce through CpuAccelerator::traceBatch; returns the rays traced.
   uint64_t traceGeneration(std::vector<PathState>& paths, std::vector<Hit>& hits, bool primary, int width, int height,
-                           FrameStats& frame) const;
+                           FrameStats& frame, BatchScratch& scratch) const;
+
+  // One bounce through CpuAccelerator::tracePacket, 8x4 pixel tiles built
+  // from the paths' rays; adds the stats to the paths; returns the rays traced.
+  uint64_t tracePackets(std::vector<PathState>& paths, std::vector<Hit>& hits, bool primary, int width,
+                        int height) const;
 
   const Scene& scene_;
   const CpuAccelerator& accelerator_;

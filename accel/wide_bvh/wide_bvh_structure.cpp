@@ -44,6 +44,11 @@ public:
   bool tracesBatches() const override { return packets_; }
   std::optional<FilterStats> traceBatch(const RayBatch& batch, std::span<Hit> hits,
                                         std::span<RayStats> stats) const override;
+  int packetSize() const override { return packets_ ? kWidePacketMax : 0; }
+  void tracePacket(std::span<const Ray> rays, bool anyHit, std::span<Hit> hits,
+                   std::span<RayStats> stats) const override {
+    traceWideBvhPacketAvx2(bvh_, rays, anyHit, hits, stats);
+  }
   std::string name() const override { return stats_.name; }
   AccelStats stats() const override { return stats_; }
 

@@ -24,7 +24,7 @@ Hit traverseWideBvhScalar(const WideBvh& bvh, std::span<const Triangle> tris, co
 Hit traverseWideBvhAvx2(const WideBvh& bvh, std::span<const Triangle> tris, const Ray& ray, bool anyHit,
                         TriangleTest test, RayStats* stats);
 bool wideBvhAvx2Available();
-inline constexpr int kWidePacketMax = 32;  // rays per packet: one bit each in a 32-bit mask
+inline constexpr int kWidePacketMax = 64;  // rays per packet: one bit each in a 64-bit mask
 // Up to kWidePacketMax rays (Möller–Trumbore only) as one packet sharing a stack; hits
 // and stats have one entry per ray (stats are added to). AVX2 only, as above.
 void traceWideBvhPacketAvx2(const WideBvh& bvh, std::span<const Ray> rays, bool anyHit, std::span<Hit> hits,

@@ -100,19 +100,24 @@ WIDE_TARGET WIDE_INLINE uint32_t packTest4(const TrianglePack& k, const RayPre& 
   return uint32_t(_mm_movemask_ps(hit));
 }
 
-// A packet of up to 32 rays through one shared stack: a child is visited
+// A packet of up to 32 (Mask = uint32_t) or 64 rays (uint64_t: measured
+// slower for 32-ray packets, so both are built) through one shared stack: a child is visited
 // when any live ray of the packet hits its box, and only by the rays that hit
 // it (per-entry ray masks). Each ray performs the same box and pack tests as
 // its single-ray traversal would at the nodes it visits, so its hit is the
 // same up to ties in t (the visiting order is the packet's).
+template <typename Mask>
 struct PacketEntry {
   uint32_t ref;
-  uint32_t rays;  // bit r: ray r hit this child's box
-  float tNear;    // the least entry distance of those rays
+  float tNear;  // the least entry distance of those rays
+  Mask rays;    // bit r: ray r hit this child's box
 };
 
+template <typename Mask>
 WIDE_TARGET void tracePacket(const WideBvh& bvh, const Ray* rays, int count, bool anyHit, Hit* best,
                              RayStats* stats) {
+  constexpr bool kWide = sizeof(Mask) == 8;
+  using Entry = PacketEntry<Mask>;
   RayPre pre[kWidePacketMax];
   uint32_t steps[kWidePacketMax] = {}, tests[kWidePacketMax] = {};
   for (int r = 0; r < count; ++r) {
@@ -120,51 +125,59 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const Ray* rays, int count, boo
     best[r] = Hit{rays[r].tMax};
   }
   if (bvh.nodes.empty()) return;
-  PacketEntry local[256];
-  std::vector<PacketEntry> heap;
-  PacketEntry* stack = local;
+  Entry local[256];
+  std::vector<Entry> heap;
+  Entry* stack = local;
   if (bvh.stackSize() > 256) {
     heap.resize(bvh.stackSize());
     stack = heap.data();
   }
-  uint32_t alive = count >= 32 ? ~0u : (1u << count) - 1u;  // rays still looking (shadow rays stop at their first hit)
+  // Rays still looking (shadow rays stop at their first hit).
+  Mask alive = count >= int(8 * sizeof(Mask)) ? ~Mask(0) : (Mask(1) << count) - 1u;
   int top = 0;
-  stack[top++] = PacketEntry{0u, alive, -kInfinity};
+  stack[top++] = Entry{0u, -kInfinity, alive};
   while (top > 0) {
     const PacketEntry entry = stack[--top];
     // Rays with a hit nearer than the entry distance of every ray here skip it.
-    uint32_t mask = entry.rays & alive, live = 0;
+    Mask mask = entry.rays & alive, live = 0;
     while (mask) {
-      const int r = __builtin_ctz(mask);
+      const int r = __builtin_ctzll(mask);
       mask &= mask - 1;
-      if (entry.tNear < best[r].t) live |= 1u << r;
+      if (entry.tNear < best[r].t) live |= Mask(1) << r;
     }
     if (!live) continue;
     if (!wideIsLeaf(entry.ref)) {
       const WideBvhNode& node = bvh.nodes[entry.ref];
-      __m256i childRays = _mm256_setzero_si256();
+      // The rays' bits per child (64-ray packets: rays 0-31, then 32-63).
+      __m256i childRays = _mm256_setzero_si256(), childRaysHigh = _mm256_setzero_si256();
       __m256 childNear = _mm256_set1_ps(kInfinity);
-      for (uint32_t m = live; m;) {
-        const int r = __builtin_ctz(m);
+      for (Mask m = live; m;) {
+        const int r = __builtin_ctzll(m);
         m &= m - 1;
         ++steps[r];
         __m256 near, hit;
         boxTest8v(node, pre[r], best[r].t, near, hit);
-        const __m256i bit = _mm256_set1_epi32(int(1u << r));
-        childRays = _mm256_or_si256(childRays, _mm256_and_si256(_mm256_castps_si256(hit), bit));
+        const __m256i bit = _mm256_and_si256(_mm256_castps_si256(hit), _mm256_set1_epi32(int(1u << (r & 31))));
+        if (!kWide || r < 32)
+          childRays = _mm256_or_si256(childRays, bit);
+        else
+          childRaysHigh = _mm256_or_si256(childRaysHigh, bit);
         childNear = _mm256_min_ps(childNear, _mm256_blendv_ps(childNear, near, hit));
       }
-      alignas(32) uint32_t raysOf[8];
+      alignas(32) uint32_t raysLow[8], raysHigh[8] = {};
       alignas(32) float nearOf[8];
-      _mm256_store_si256(reinterpret_cast<__m256i*>(raysOf), childRays);
+      _mm256_store_si256(reinterpret_cast<__m256i*>(raysLow), childRays);
+      if constexpr (kWide) _mm256_store_si256(reinterpret_cast<__m256i*>(raysHigh), childRaysHigh);
       _mm256_store_ps(nearOf, childNear);
       // Nearest first for shadow packets too: measured 1.1-1.5x less CPU time per
       // frame with shadow rays than lane order (the single-ray loop showed no gain).
-      PacketEntry hits[8];
+      Entry hits[8];
       int n = 0;
       for (int lane = 0; lane < kWideBvhWidth; ++lane) {
-        if (!raysOf[lane]) continue;
-        PacketEntry e{node.child[lane], raysOf[lane], nearOf[lane]};
+        Mask raysOf = raysLow[lane];
+        if constexpr (kWide) raysOf |= Mask(raysHigh[lane]) << 32;
+        if (!raysOf) continue;
+        Entry e{node.child[lane], nearOf[lane], raysOf};
         int j = n++;
         while (j > 0 && hits[j - 1].tNear > e.tNear) {
           hits[j] = hits[j - 1];
@@ -176,8 +189,8 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const Ray* rays, int count, boo
       continue;
     }
     const uint32_t first = wideLeafFirst(entry.ref), packs = wideLeafPacks(entry.ref);
-    for (uint32_t m = live; m;) {
-      const int r = __builtin_ctz(m);
+    for (Mask m = live; m;) {
+      const int r = __builtin_ctzll(m);
       m &= m - 1;
       for (uint32_t p = first; p < first + packs; ++p) {
         const TrianglePack& pack = bvh.packs[p];
@@ -190,7 +203,7 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const Ray* rays, int count, boo
           if (t[lane] < best[r].t) best[r] = Hit{t[lane], u[lane], v[lane], pack.id[lane]};
         }
         if (anyHit && best[r].found()) {
-          alive &= ~(1u << r);
+          alive &= ~(Mask(1) << r);
           break;
         }
       }
@@ -212,7 +225,10 @@ Hit traverseWideBvhAvx2(const WideBvh& bvh, std::span<const Triangle> tris, cons
 
 void traceWideBvhPacketAvx2(const WideBvh& bvh, std::span<const Ray> rays, bool anyHit, std::span<Hit> hits,
                             std::span<RayStats> stats) {
-  tracePacket(bvh, rays.data(), int(rays.size()), anyHit, hits.data(), stats.data());
+  if (rays.size() > 32)
+    tracePacket<uint64_t>(bvh, rays.data(), int(rays.size()), anyHit, hits.data(), stats.data());
+  else
+    tracePacket<uint32_t>(bvh, rays.data(), int(rays.size()), anyHit, hits.data(), stats.data());
 }
 
 bool wideBvhAvx2Available() {
