@@ -5,14 +5,37 @@
 #include <algorithm>
 #include <cctype>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
 #include "accel/registry.h"
 
 namespace passtrace::testing_registry {
+
+// A row's name as a gtest case name ("kd-stack" -> "kd_stack").
+inline std::string caseName(std::string_view name) {
+  std::string s(name);
+  std::replace(s.begin(), s.end(), '-', '_');
+  return s;
+}
+
+// For INSTANTIATE_TEST_SUITE_P over row names.
+struct CaseNameOfRow {
+  template <class Info>
+  std::string operator()(const Info& info) const { return caseName(info.param); }
+};
+
+// The names of the rows that run on `renderer` (every row for nullopt).
+inline std::vector<std::string> rowNames(std::optional<RendererId> renderer = std::nullopt) {
+  std::vector<std::string> names;
+  for (const Structure& s : structures())
+    if (!renderer || s.runsOn(*renderer)) names.emplace_back(s.name);
+  return names;
+}
 
 inline const Structure& cpuRow(int number) { return resolveStructure(std::to_string(number), RendererId::Cpu); }
 inline std::string cpuName(int number) { return std::string(cpuRow(number).name); }

@@ -15,6 +15,7 @@
 #include "accel/registry.h"
 #include "scenes/scene_registry.h"
 #include "tests/cli_support.h"
+#include "tests/registry_helpers.h"
 
 namespace passtrace {
 namespace {
@@ -142,17 +143,9 @@ TEST_P(CliParams, UnreadFlagsWarnOnceAndReadOnesDoNot) {
   }
 }
 
-std::vector<std::string> structureNames() {
-  std::vector<std::string> names;
-  for (const Structure& s : structures()) names.emplace_back(s.name);
-  return names;
-}
 
-INSTANTIATE_TEST_SUITE_P(AllStructures, CliParams, ::testing::ValuesIn(structureNames()), [](const auto& info) {
-  std::string name = info.param;
-  std::replace(name.begin(), name.end(), '-', '_');
-  return name;
-});
+INSTANTIATE_TEST_SUITE_P(AllStructures, CliParams, ::testing::ValuesIn(testing_registry::rowNames()),
+                         testing_registry::CaseNameOfRow());
 
 }  // namespace
 }  // namespace passtrace

@@ -12,6 +12,7 @@
 #include "scenes/scene.h"
 #include "tests/gl_test_support.h"
 #include "tests/test_meshes.h"
+#include "tests/registry_helpers.h"
 
 namespace passtrace {
 namespace {
@@ -39,8 +40,7 @@ const std::vector<GpuCase>& gpuCases() {
     for (const TriangleTest test : {TriangleTest::MollerTrumbore, TriangleTest::Watertight})
       for (const Structure& s : structures()) {
         if (!s.runsOn(RendererId::Gpu)) continue;
-        std::string name(s.name);
-        std::replace(name.begin(), name.end(), '-', '_');
+        std::string name = testing_registry::caseName(s.name);
         const std::string suffix = test == TriangleTest::Watertight ? "_watertight" : "";
         cases.push_back({&s, GridKernels::Merged, name + suffix, test});
         const auto reads = s.readsOn(RendererId::Gpu);

@@ -22,6 +22,7 @@
 #include "stream/texel_address.h"
 #include "tests/gl_test_support.h"
 #include "tests/test_meshes.h"
+#include "tests/registry_helpers.h"
 
 namespace passtrace {
 namespace {
@@ -90,12 +91,6 @@ TEST_F(GlTest, KernelCompiledForFewerPagesRefusesPagedData) {
 // pages and doubles until no stream needs more than kMaxStreamPages, so the
 // largest stream of each structure is paged.
 // Parametrised by the registry's stream structures.
-std::vector<std::string> streamStructureNames() {
-  std::vector<std::string> names;
-  for (const Structure& s : structures())
-    if (s.runsOn(RendererId::Gpu)) names.emplace_back(s.name);
-  return names;
-}
 
 class PagedTraversal : public GlTest, public ::testing::WithParamInterface<std::string> {};
 
@@ -127,12 +122,9 @@ TEST_P(PagedTraversal, SameHitsAsBruteForce) {
   EXPECT_GT(found, rays.size() / 10);
 }
 
-INSTANTIATE_TEST_SUITE_P(AllStructures, PagedTraversal, ::testing::ValuesIn(streamStructureNames()),
-                         [](const auto& info) {
-                           std::string name = info.param;
-                           std::replace(name.begin(), name.end(), '-', '_');
-                           return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(AllStructures, PagedTraversal,
+                         ::testing::ValuesIn(testing_registry::rowNames(RendererId::Gpu)),
+                         testing_registry::CaseNameOfRow());
 
 }  // namespace
 }  // namespace passtrace

@@ -15,6 +15,7 @@
 #include "render/gpu_renderer.h"
 #include "scenes/scene_registry.h"
 #include "tests/gl_test_support.h"
+#include "tests/registry_helpers.h"
 
 namespace passtrace {
 namespace {
@@ -23,12 +24,6 @@ using test::GlTest;
 
 constexpr int kSize = 32;
 
-std::vector<std::string> streamRows() {
-  std::vector<std::string> names;
-  for (const Structure& s : structures())
-    if (s.runsOn(RendererId::Gpu)) names.emplace_back(s.name);
-  return names;
-}
 
 FrameResult render(const Scene& scene, GpuTraversal& traversal, ShadingConfig shading, int bounces,
                    Compaction compact) {
@@ -109,12 +104,9 @@ TEST_F(GlTest, CompactionOfAStreamOfOddSize) {
   EXPECT_EQ(a.stats.triangleTests, b.stats.triangleTests);
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryStreamRow, CompactOnOff, ::testing::ValuesIn(streamRows()),
-                         [](const auto& info) {
-                           std::string name = info.param;
-                           std::replace(name.begin(), name.end(), '-', '_');
-                           return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(EveryStreamRow, CompactOnOff,
+                         ::testing::ValuesIn(testing_registry::rowNames(RendererId::Gpu)),
+                         testing_registry::CaseNameOfRow());
 
 }  // namespace
 }  // namespace passtrace

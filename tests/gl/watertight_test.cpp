@@ -32,6 +32,7 @@
 #include "render/parallel_for.h"
 #include "tests/gl_test_support.h"
 #include "tests/watertight_sphere.h"
+#include "tests/registry_helpers.h"
 
 namespace passtrace {
 namespace {
@@ -272,9 +273,8 @@ TEST_P(WatertightGpu, AllStructures) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllStructures, WatertightCpu, ::testing::ValuesIn(cpuCases()), [](const auto& info) {
-  std::string name = info.param.structure;
-  std::replace(name.begin(), name.end(), '-', '_');
-  return name + (info.param.test == TriangleTest::Watertight ? "_watertight" : "_moller_trumbore");
+  const bool watertight = info.param.test == TriangleTest::Watertight;
+  return testing_registry::caseName(info.param.structure) + (watertight ? "_watertight" : "_moller_trumbore");
 });
 INSTANTIATE_TEST_SUITE_P(BothTests, WatertightGpu,
                          ::testing::Values(TriangleTest::MollerTrumbore, TriangleTest::Watertight),

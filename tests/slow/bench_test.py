@@ -170,7 +170,7 @@ def main():
             print(proc.stdout[-3000:], proc.stderr[-3000:], sep="\n")
         results = json.loads((out / "results.json").read_text()) if (out / "results.json").exists() else {}
         keys = {r["meta"]["key"] for r in results.get("runs", []) if r.get("status") == "ok"}
-        check(len(keys) == 19, f"--cones runs 5 cones and 3 ray counts per structure and 3 stream-path cones "
+        check(len(keys) == 20, f"--cones runs 5 cones and 3 ray counts per structure and 4 stream-path cones "
                               f"({len(keys)} ok)")
         report = (out / "REPORT.md").read_text() if (out / "REPORT.md").exists() else ""
         check(report.count("| cornell |") == 2 and "hold" in report, "--cones marks both claims for the scene")

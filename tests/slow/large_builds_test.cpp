@@ -67,6 +67,8 @@ TEST_P(CpuStructureLargeSoup, BuildsAndHits) {
   EXPECT_GT(hits, 0u);
 }
 
+
+// Every row with a CPU structure: the CPU renderer's and Embree's.
 std::vector<std::string> cpuStructureNames() {
   std::vector<std::string> names;
   for (const Structure& s : structures())
@@ -75,11 +77,7 @@ std::vector<std::string> cpuStructureNames() {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllStructures, CpuStructureLargeSoup, ::testing::ValuesIn(cpuStructureNames()),
-                         [](const auto& info) {
-                           std::string name = info.param;
-                           std::replace(name.begin(), name.end(), '-', '_');
-                           return name;
-                         });
+                         testing_registry::CaseNameOfRow());
 
 }  // namespace
 }  // namespace passtrace

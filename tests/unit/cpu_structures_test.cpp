@@ -20,6 +20,7 @@
 #include "accel/registry.h"
 #include "tests/hit_checks.h"
 #include "tests/test_meshes.h"
+#include "tests/registry_helpers.h"
 
 namespace passtrace {
 namespace {
@@ -128,8 +129,7 @@ const std::vector<CpuCase>& cpuCases() {
   static const std::vector<CpuCase> cases = [] {
     std::vector<CpuCase> cases;
     for (const Structure* s : cpuStructures()) {
-      std::string name(s->name);
-      std::replace(name.begin(), name.end(), '-', '_');
+      std::string name = testing_registry::caseName(s->name);
       cases.push_back({s, AccelBuildConfig{}, name});
       const auto reads = s->readsOn(RendererId::Cpu);
       if (std::find(reads.begin(), reads.end(), BuildParam::KdStackSize) != reads.end())
