@@ -1,5 +1,6 @@
 // BIH traversal and intersection: up to uLoopLimit steps of bih_traversal.glsl
 // per pass; the stack lives in bih_ray_record.glsl's buffer.
+#extension GL_ARB_shader_group_vote : require
 #include "texel_address.glsl"
 #include "intersect.glsl"
 #include "ray_kinds.glsl"
@@ -44,8 +45,12 @@ void main() {
   ray.done = false;
   ray.record = bihRecordBase();
   ray.count = unpackIndex(bihRecords[ray.record]);
-  for (int i = 0; i < uLoopLimit && !ray.done; ++i)
-    bihStep(ray, uNodes, uLists, uTriangles);
+  // The group vote ends the loop once every lane is done: llvmpipe runs a
+  // loop whose body touches a storage buffer to its bound otherwise.
+  for (int i = 0; i < uLoopLimit; ++i) {
+    if (allInvocationsARB(ray.done)) break;
+    if (!ray.done) bihStep(ray, uNodes, uLists, uTriangles);
+  }
   bihRecords[ray.record] = packIndex(ray.count);
   outState = vec4(packIndex(ray.node), ray.steps, ray.tests, ray.done ? 0.0 : 1.0);
   outHit = ray.hit;

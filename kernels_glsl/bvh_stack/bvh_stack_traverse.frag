@@ -1,5 +1,6 @@
 // Stack BVH traversal and intersection: up to uLoopLimit steps of
 // bvh_stack_traversal.glsl per pass; the stack lives in the ray's record.
+#extension GL_ARB_shader_group_vote : require
 #include "texel_address.glsl"
 #include "intersect.glsl"
 #include "ray_kinds.glsl"
@@ -40,8 +41,12 @@ void main() {
   ray.done = false;
   ray.record = bvhRecordBase();
   ray.depth = unpackIndex(bvhRecords[ray.record]);
-  for (int i = 0; i < uLoopLimit && !ray.done; ++i)
-    bvhStep(ray, uNodes, uReferences, uTriangles);
+  // The group vote ends the loop once every lane is done: llvmpipe runs a
+  // loop whose body touches a storage buffer to its bound otherwise.
+  for (int i = 0; i < uLoopLimit; ++i) {
+    if (allInvocationsARB(ray.done)) break;
+    if (!ray.done) bvhStep(ray, uNodes, uReferences, uTriangles);
+  }
   bvhRecords[ray.record] = packIndex(ray.depth);
   outState = vec4(packIndex(ray.link), ray.steps, ray.tests, ray.done ? 0.0 : 1.0);
   outHit = ray.hit;

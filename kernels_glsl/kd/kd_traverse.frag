@@ -2,6 +2,7 @@
 // or kd-stack traversal and intersection (the defines of kd_traversal.glsl):
 // up to uLoopLimit steps of kd_traversal.glsl per pass. KD_RECORD: the ray's
 // root, push-down flag and stack live in kd_ray_record.glsl's buffer.
+#extension GL_ARB_shader_group_vote : require
 #include "texel_address.glsl"
 #include "intersect.glsl"
 #include "ray_kinds.glsl"
@@ -57,8 +58,12 @@ void main() {
   ray.count = unpackIndex(kdRecords[ray.record + 2u]);
   ray.pushDown = kdRecords[ray.record + 3u] != 0.0;
 #endif
-  for (int i = 0; i < uLoopLimit && !ray.done; ++i)
-    kdStep(ray, uNodes, uLists, uTriangles);
+  // The group vote ends the loop once every lane is done: llvmpipe runs a
+  // loop whose body touches a storage buffer to its bound otherwise.
+  for (int i = 0; i < uLoopLimit; ++i) {
+    if (allInvocationsARB(ray.done)) break;
+    if (!ray.done) kdStep(ray, uNodes, uLists, uTriangles);
+  }
 #ifdef KD_RECORD
   kdRecords[ray.record] = packIndex(ray.root);
   kdRecords[ray.record + 1u] = packIndex(ray.top);

@@ -1,6 +1,7 @@
 // Octree traversal and intersection (Revelles et al. 2000): up to uLoopLimit
 // steps of octree_traversal.glsl per pass; the frames live in
 // octree_ray_record.glsl's buffer.
+#extension GL_ARB_shader_group_vote : require
 #include "texel_address.glsl"
 #include "intersect.glsl"
 #include "ray_kinds.glsl"
@@ -46,8 +47,12 @@ void main() {
   ray.done = false;
   ray.record = octreeRecordBase();
   ray.count = unpackIndex(octreeRecords[ray.record]);
-  for (int i = 0; i < uLoopLimit && !ray.done; ++i)
-    octreeStep(ray, uNodes, uLists, uTriangles);
+  // The group vote ends the loop once every lane is done: llvmpipe runs a
+  // loop whose body touches a storage buffer to its bound otherwise.
+  for (int i = 0; i < uLoopLimit; ++i) {
+    if (allInvocationsARB(ray.done)) break;
+    if (!ray.done) octreeStep(ray, uNodes, uLists, uTriangles);
+  }
   octreeRecords[ray.record] = packIndex(ray.count);
   outState = vec4(packIndex(ray.node), ray.steps, ray.tests, ray.done ? 0.0 : 1.0);
   outHit = ray.hit;
