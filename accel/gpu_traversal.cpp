@@ -5,9 +5,15 @@
 #include "accel/ray_stream_layout.h"
 #include "stream/gl_error.h"
 #include "stream/inout_stream.h"
+#include "stream/shader_loop_budget.h"
 #include "stream/stream_kernel.h"
 
 namespace passtrace {
+
+GpuTraversalConfig withPassStepLimit(GpuTraversalConfig config) {
+  config.loopLimit = passStepLimit(config.loopLimit);
+  return config;
+}
 
 void bindRayInputs(StreamKernel& kernel, const InOutStream& rays) {
   kernel.bindInput("uOrigin", rays, kOriginSurface);

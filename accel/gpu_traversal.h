@@ -47,7 +47,10 @@ const char* compactionName(Compaction c);
 
 struct GpuTraversalConfig {
   AccelBuildConfig build;
-  int loopLimit = 20;  // traversal steps per element per pass (tracy's -l)
+  // Traversal steps per element per pass (tracy's -l; the thesis ran 20).
+  // 0 = as many as a pass may run: one pass per bounce. makeStreamStructure
+  // hands the structure the resolved value (stream/shader_loop_budget.h).
+  int loopLimit = 0;
   GridKernels gridKernels = GridKernels::Merged;
   // Texels per ConstInputStream texture page, 0 = the largest texture the GL
   // accepts (--page-texels; smaller values exercise paging on small scenes).
@@ -56,6 +59,11 @@ struct GpuTraversalConfig {
   // whole 4x4 blocks before tracing them (render/gpu_renderer.h); structures ignore it.
   Compaction compact = Compaction::Off;
 };
+
+// `config` with its loopLimit resolved for the current context: -l 0 made
+// the most a pass may run, any -l bounded by the driver's loop cap
+// (stream/shader_loop_budget.h). Structures are built with the result.
+GpuTraversalConfig withPassStepLimit(GpuTraversalConfig config);
 
 // Shared by the implementations: binds the ray surfaces a traversal kernel
 // reads (uOrigin, uDirection, uState, uHit, uAux), and runs `kernel` pass

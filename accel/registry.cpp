@@ -254,7 +254,8 @@ std::string buildParamDefault(BuildParam param) {
     case P::KdMinElements: return number(cpu.kdMinElements);
     case P::KdMaxDepth: return cpu.kdMaxDepth == 0 ? "0 = 8 + 1.3 log2 N" : number(cpu.kdMaxDepth);
     case P::GridKernels: return gpu.gridKernels == GridKernels::Merged ? "merged" : "split";
-    case P::LoopLimit: return number(gpu.loopLimit);
+    case P::LoopLimit: return gpu.loopLimit == 0 ? "0 = one pass per bounce (within the driver's loop cap)"
+                                                  : number(gpu.loopLimit);
     case P::PageTexels: return gpu.maxPageTexels == 0 ? "0 = the largest texture" : number(double(gpu.maxPageTexels));
     case P::TriangleTest: return kTriangleTestNames[int(cpu.triangleTest)];
     case P::KdStackSize: return number(cpu.kdStackSize);
@@ -331,8 +332,8 @@ std::unique_ptr<CpuAccelerator> makeCpuStructure(const Structure& s, std::span<c
 std::unique_ptr<GpuTraversal> makeStreamStructure(const Structure& s, std::span<const Triangle> tris,
                                                   const GpuTraversalConfig& config) {
   if (!s.stream) throw std::invalid_argument(std::string(s.name) + " has no GPU stream implementation");
-  if (config.loopLimit < 1) throw std::invalid_argument("the loop limit (-l) must be at least 1");
-  return s.stream(tris, config);
+  if (config.loopLimit < 0) throw std::invalid_argument("the loop limit (-l) must be at least 0");
+  return s.stream(tris, withPassStepLimit(config));
 }
 
 std::unique_ptr<CpuAccelerator> makeMirrorStructure(const Structure& s, std::span<const Triangle> tris,

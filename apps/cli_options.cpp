@@ -74,8 +74,10 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
                  "camera-path angles to render (thesis figure 27); 1 renders the scene's own view")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
-  app.add_option("-l,--loop-limit", o.loopLimit, "GPU traversal steps per ray per pass")
-      ->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  app.add_option("-l,--loop-limit", o.loopLimit,
+                 "GPU traversal steps per ray per pass (the thesis: 20); 0 = one pass per bounce. On llvmpipe a "
+                 "pass runs at most what its shader loop cap allows")
+      ->check(CLI::Range(0, 1 << 20))->capture_default_str();
   app.add_option("--stack-size", o.stackSize,
                  "kd-shortstack, kd-pushdown-shortstack: entries of the circular stack (the oldest is dropped "
                  "when full)")

@@ -37,7 +37,7 @@ struct Options {
   int kdMaxDepth = 0;               // -d: kd-tree maximum depth, 0 = 8 + 1.3 log2 N
   int repeats = 1;                  // -m: timed repeats, the minimum is reported
   int angles = 1;                   // -n: camera-path angles
-  int loopLimit = 20;               // -l: GPU traversal steps per pass
+  int loopLimit = 0;                // -l: GPU traversal steps per pass, 0 = one pass per bounce
   int stackSize = 4;                // --stack-size: kd short-stack entries, 1-8
   int swapChildren = 1;             // -c: K/K child swap probability = 0.5 c
   unsigned threads = 0;             // --threads: CPU renderer threads, 0 = all cores

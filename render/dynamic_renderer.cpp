@@ -71,7 +71,8 @@ class DynamicStream final : public DynamicRenderer {
     if (!traversal_) {
       // The first frame makes the kernels (compiled on its first draw); only
       // its flattening counts, as in the frames after it.
-      traversal_ = std::make_unique<GpuKdDynamicTraversal>(trees_, variant_, scene_.triangles, config_.gpu);
+      traversal_ = std::make_unique<GpuKdDynamicTraversal>(trees_, variant_, scene_.triangles,
+                                                           withPassStepLimit(config_.gpu));
       ms += traversal_->firstFlattenMs();
       renderer_ = std::make_unique<GpuRenderer>(scene_, *traversal_, config_.width, config_.height,
                                                 config_.gpu.maxPageTexels, config_.shading, config_.gpu.compact);

@@ -125,7 +125,7 @@ ConeFrame traceConesGpu(const ConeStreamTree& tree, const CameraBasis& camera,
     // pass only starts each cone (root box), a state the next pass resumes.
     kernel.set("uLoopLimit", 0);
     kernel.execute();
-    kernel.set("uLoopLimit", gpu.loopLimit);
+    kernel.set("uLoopLimit", passStepLimit(gpu.loopLimit));
     glFinish();
     const auto start = std::chrono::steady_clock::now();
     while (kernel.execute(true) > 0) {

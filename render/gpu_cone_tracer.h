@@ -13,7 +13,7 @@
 namespace passtrace {
 
 struct GpuConeConfig {
-  int loopLimit = 64;  // -l: node visits per pass; the state resumes across passes
+  int loopLimit = 64;  // -l: node visits per pass (0 = the driver's budget); the state resumes across passes
   // Distinct triangles a cone's list holds with --cone-max 0; a cone meeting
   // more is a one-line error (never a silently short count). With --cone-max
   // N the list holds N.

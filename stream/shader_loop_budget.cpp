@@ -1,6 +1,9 @@
 #include "stream/shader_loop_budget.h"
 
+#include <algorithm>
 #include <regex>
+
+#include "stream/gl.h"
 
 namespace passtrace {
 
@@ -14,5 +17,17 @@ uint32_t shaderLoopBudget(const std::string& glRenderer) {
     bits = uint32_t(std::stoul(m[1]));
   return kLlvmpipeLoopCap / (bits / 32) - kMargin;
 }
+
+uint32_t currentShaderLoopBudget() {
+  const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  return shaderLoopBudget(renderer ? renderer : "");
+}
+
+int passStepLimit(int loopLimit, uint32_t budget) {
+  const int cap = int(std::max<uint32_t>(1, budget / kLoopIterationsPerStep));
+  return loopLimit <= 0 ? cap : std::min(loopLimit, cap);
+}
+
+int passStepLimit(int loopLimit) { return passStepLimit(loopLimit, currentShaderLoopBudget()); }
 
 }  // namespace passtrace

@@ -19,5 +19,21 @@ namespace passtrace {
 // of 32 bits), less a margin for the loops a kernel does not count;
 // 2^30 elsewhere.
 uint32_t shaderLoopBudget(const std::string& glRenderer);
+// The same for the current context's GL_RENDERER.
+uint32_t currentShaderLoopBudget();
+
+// Loop iterations a traversal kernel may run per step, at most: the step's
+// own iteration, the pop loop (amortised: each pushed entry is popped once;
+// bvh_stack_traversal.glsl, octree_traversal.glsl) and the small per-axis
+// loops a compiler may leave rolled.
+inline constexpr uint32_t kLoopIterationsPerStep = 4;
+
+// Traversal steps per element per pass that a kernel runs for -l: 0 asks
+// for as many as the budget allows (one pass per bounce, unless a ray needs
+// more steps than the cap leaves: it then resumes in the next pass, as at
+// any -l); any -l is bounded by the budget, so no pass is cut short.
+int passStepLimit(int loopLimit, uint32_t budget);
+// The same for the current context.
+int passStepLimit(int loopLimit);
 
 }  // namespace passtrace

@@ -1,10 +1,37 @@
 #include "stream/storage_buffer.h"
 
 #include <algorithm>
+#include <string_view>
 
 #include "stream/gl_error.h"
 
 namespace passtrace {
+namespace {
+
+// The largest block a kernel may bind. llvmpipe reports 128 MiB, Mesa's
+// default, yet addresses blocks up to 2 GiB (31-bit byte offsets): measured,
+// a 2048^2 bvh-stack stream's 880 MiB of stacks gives the same hits as
+// kk-bvh, and 3.5 GiB crash it. Other drivers: what they report.
+uint64_t blockLimitBytes() {
+  GLint64 reported = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &reported);
+  const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  const bool llvmpipe = renderer && std::string_view(renderer).find("llvmpipe") != std::string_view::npos;
+  const uint64_t limit = uint64_t(std::max<GLint64>(reported, 0));
+  return llvmpipe ? std::max<uint64_t>(limit, (uint64_t(1) << 31) - 1) : limit;
+}
+
+// A kernel binds the whole buffer as one block, and a block past the limit
+// is undefined: llvmpipe crashes (a 4096^2 bvh-stack stream's 3.5 GiB of
+// stacks). Say so instead.
+void checkBlockSize(const std::string& what, uint64_t bytes) {
+  const uint64_t limit = blockLimitBytes();
+  if (limit > 0 && bytes > limit)
+    throw GlError(what + ": " + std::to_string(bytes >> 20) + " MiB exceed this driver's largest storage buffer (" +
+                  std::to_string(limit >> 20) + " MiB); use a smaller image or the CPU renderer");
+}
+
+}  // namespace
 
 StorageBuffer::StorageBuffer(std::string what) : what_(std::move(what)) {}
 
@@ -14,6 +41,7 @@ StorageBuffer::~StorageBuffer() {
 
 void StorageBuffer::reserve(uint64_t floats) {
   if (floats <= floats_) return;
+  checkBlockSize(what_, floats * sizeof(float));
   if (buffer_) glDeleteBuffers(1, &buffer_);
   buffer_ = 0;
   floats_ = 0;
@@ -35,6 +63,7 @@ void StorageBuffer::zero(uint64_t floats) {
 }
 
 void StorageBuffer::upload(const std::vector<float>& data) {
+  checkBlockSize(what_, data.size() * sizeof(float));
   if (buffer_) glDeleteBuffers(1, &buffer_);
   buffer_ = 0;
   floats_ = 0;

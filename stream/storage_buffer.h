@@ -22,12 +22,13 @@ class StorageBuffer {
   StorageBuffer(const StorageBuffer&) = delete;
   StorageBuffer& operator=(const StorageBuffer&) = delete;
 
-  // Makes the buffer hold at least `floats` floats (all zero after growing). Throws GlError naming the data, e.g. when out of GPU memory.
+  // Makes the buffer hold at least `floats` floats (all zero after growing). Throws GlError naming the data, e.g.
+  // when out of GPU memory or past GL_MAX_SHADER_STORAGE_BLOCK_SIZE.
   void reserve(uint64_t floats);
   uint64_t floats() const { return floats_; }
   GLuint buffer() const { return buffer_; }
 
-  // Replaces the contents with `data` (read-only for kernels after this), e.g. a tree's nodes.
+  // Replaces the contents with `data` (read-only for kernels after this), e.g. a tree's nodes. Throws as reserve.
   void upload(const std::vector<float>& data);
   // Sets the first `floats` floats to zero on the GPU (a counter a kernel then
   // increments, or per-element state before the buffer is reused).

@@ -73,9 +73,9 @@ TEST(Registry, BuildingForARendererWithoutAnImplementationThrows) {
   const auto tris = testmesh::singleTriangle();
   EXPECT_THROW(makeStreamStructure(*findStructure("octree-descent"), tris), std::invalid_argument);
   EXPECT_THROW(makeMirrorStructure(*findStructure("kd-tree"), tris), std::invalid_argument);
-  GpuTraversalConfig zeroLoop;
-  zeroLoop.loopLimit = 0;
-  EXPECT_THROW(makeStreamStructure(*findStructure("kk-bvh"), tris, zeroLoop), std::invalid_argument);
+  GpuTraversalConfig negativeLoop;
+  negativeLoop.loopLimit = -1;  // 0 is "one pass per bounce"
+  EXPECT_THROW(makeStreamStructure(*findStructure("kk-bvh"), tris, negativeLoop), std::invalid_argument);
 }
 
 TEST(Registry, UnusedParametersAreThoseTheRowDoesNotRead) {

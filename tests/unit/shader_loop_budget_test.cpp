@@ -21,5 +21,15 @@ TEST(ShaderLoopBudget, OtherDriversHaveNoCap) {
   EXPECT_EQ(shaderLoopBudget(""), 1u << 30);
 }
 
+TEST(ShaderLoopBudget, PassStepLimitResolvesZeroAndBoundsEveryLimit) {
+  const uint32_t budget = shaderLoopBudget("llvmpipe (LLVM 15.0.6, 256 bits)");
+  const int cap = int(budget / kLoopIterationsPerStep);
+  EXPECT_EQ(passStepLimit(0, budget), cap);           // one pass per bounce, within the cap
+  EXPECT_EQ(passStepLimit(20, budget), 20);           // the thesis's -l runs as given
+  EXPECT_EQ(passStepLimit(100000, budget), cap);      // more than the cap would be cut without a sign
+  EXPECT_EQ(passStepLimit(0, 1u << 30), int((1u << 30) / kLoopIterationsPerStep));
+  EXPECT_EQ(passStepLimit(0, 1), 1);                  // a pass always makes progress
+}
+
 }  // namespace
 }  // namespace passtrace
