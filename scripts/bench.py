@@ -251,7 +251,7 @@ class Plan:
             "per_scene": {s: {"bounces": self.bounces[s], "angles": self.scene_angles(s),
                               "grid_multiplier": self.grid[s], "kd_depth_restart": self.kd[s][0],
                               "kd_depth_backtrack": self.kd[s][1]} for s in self.scenes},
-            "loop_limit": 20, "kd_min_elements": 2, "timeout_s": self.timeout,
+            "loop_limit": THESIS_LOOP_LIMIT, "kd_min_elements": 2, "timeout_s": self.timeout,
         }
 
 
@@ -272,8 +272,15 @@ def write_json_atomic(path, data):
     os.replace(tmp, path)
 
 
+# Stream-renderer runs (-r 2) are made at the thesis's -l 20, the setting
+# every section's report was measured at, unless a section says otherwise
+# (Runner.loop_limit; None passes no -l: passtrace's default, one pass per bounce).
+THESIS_LOOP_LIMIT = 20
+
+
 class Runner:
-    def __init__(self, binary, bart, out, timeout, force):
+    def __init__(self, binary, bart, out, timeout, force, loop_limit=THESIS_LOOP_LIMIT):
+        self.loop_limit = loop_limit
         self.binary = binary
         self.bart = bart
         self.out = out
@@ -285,6 +292,9 @@ class Runner:
 
     def command(self, args, json_path, extra=()):
         cmd = [str(self.binary)] + args + ["--json", str(json_path), "-q"] + list(extra)
+        stream = "-r" in args and args[args.index("-r") + 1] == "2"
+        if stream and self.loop_limit is not None and "-l" not in args:
+            cmd += ["-l", str(self.loop_limit)]
         if args[1] in BART_SCENES:
             cmd += ["--bart-dir", str(self.bart)]
         return cmd

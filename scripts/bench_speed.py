@@ -32,6 +32,9 @@ BART = {"kitchen", "robots"}
 BOX_FLOPS, BOX_BYTES = 12, 24
 TRI_FLOPS, TRI_BYTES = 40, 36
 RENDERER_IDS = {"cpu": "1", "gpu": "2", "embree": "3"}
+# The stream rows run at passtrace's default -l 0 (one pass per bounce); on
+# the first scene also at the thesis's -l 20, for the loop-limit table.
+THESIS_LOOP_LIMIT = 20
 
 
 class Plan:
@@ -56,6 +59,13 @@ class Plan:
                         key = f"speed__{scene}__{renderer}__{name}__t{t}"
                         self.jobs.append(("speed", {"key": key, "scene": scene, "renderer": renderer,
                                                     "structure": name, "threads": t}, args, key))
+                    if renderer == "gpu" and i == 0:  # the thesis's loop limit against one pass per bounce
+                        args = ["-s", scene, "-r", RENDERER_IDS[renderer], "-a", name, "-w", str(size), "-b", "1",
+                                "-m", str(repeats), "--threads", "2", "-l", str(THESIS_LOOP_LIMIT)]
+                        key = f"speed__{scene}__{renderer}__{name}__l{THESIS_LOOP_LIMIT}"
+                        self.jobs.append(("speed", {"key": key, "scene": scene, "renderer": renderer,
+                                                    "structure": name, "threads": 2,
+                                                    "loop_limit": THESIS_LOOP_LIMIT}, args, key))
 
 
 def measure_tool(binary, name):
@@ -126,13 +136,24 @@ def ratio(a, b):
     return a / b if a and b else None
 
 
-def collect(records):
-    """{(scene, renderer, structure, threads): result} of the runs that finished."""
+def collect(records, loop_limit=None):
+    """{(scene, renderer, structure, threads): result} of the runs that finished at `loop_limit`
+    (None: passtrace's default)."""
     by = {}
     for meta, rec in records:
-        if rec and rec.get("status") == "ok":
+        if rec and rec.get("status") == "ok" and meta.get("loop_limit") == loop_limit:
             by[(meta["scene"], meta["renderer"], meta["structure"], meta["threads"])] = rec["result"]
     return by
+
+
+def loop_rows(by, by_thesis):
+    rows = []
+    for (scene, renderer, structure, threads), thesis in sorted(by_thesis.items()):
+        r = by.get((scene, renderer, structure, threads)) or {}
+        a, b = thesis.get("mrays_per_s"), r.get("mrays_per_s")
+        rows.append([scene, structure, num(a), num(thesis.get("passes"), 0), num(b), num(r.get("passes"), 0),
+                     num(ratio(b, a))])
+    return rows
 
 
 def roofline_rows(by, machine):
@@ -193,6 +214,7 @@ def threads_rows(by, embree, scene):
 
 def write_report(out_dir, results, records, baselines, scenes):
     by = collect(records)
+    by_thesis = collect(records, THESIS_LOOP_LIMIT)
     machine, embree = baselines["machine"], baselines["embree"]
     p, m = results["parameters"], results["machine"]
     lines = [
@@ -202,7 +224,7 @@ def write_report(out_dir, results, records, baselines, scenes):
         f"Machine: {m.get('cpu')}, {m.get('cores')} cores; GL: {m.get('gl_renderer')}; commit "
         f"{(m.get('git_commit') or '?')[:10]}.", "",
         f"Primary rays only (`-b 1`), {p['size']}² pixels, the minimum of `-m {p['repeats']}`, `--threads 2` "
-        "unless a column says otherwise. Timings on a shared machine vary by ±20–50 % between runs: compare the "
+        "unless a column says otherwise; stream rows at `-l 0` (one pass per bounce) unless a table says otherwise. Timings on a shared machine vary by ±20–50 % between runs: compare the "
         "ratios, which were measured within this one run. Scenes skipped (BART missing): "
         f"{', '.join(results['skipped']) or 'none'}.", "",
         "## This machine's limits (measured)", "",
@@ -222,6 +244,13 @@ def write_report(out_dir, results, records, baselines, scenes):
     if scenes:
         lines += [f"### 2 threads against 1 ({scenes[0]}; goal ≥ 1.8×)", "",
                   md_table(["path", "2 threads", "1 thread", "ratio"], threads_rows(by, embree, scenes[0])), ""]
+    if by_thesis:
+        lines += ["## Loop limit per stream row (item 3)", "",
+                  f"Each stream row at the thesis's `-l {THESIS_LOOP_LIMIT}` (steps per ray per pass) and at "
+                  "passtrace's default `-l 0`: one pass per bounce, each pass bounded by llvmpipe's shader loop "
+                  "cap (stream/shader_loop_budget.h). Passes are per frame.", "",
+                  md_table(["scene", "structure", f"-l {THESIS_LOOP_LIMIT} Mrays/s", "passes", "-l 0 Mrays/s",
+                            "passes", "-l 0 / -l 20"], loop_rows(by, by_thesis)), ""]
     lines += [
         "## Roofline", "",
         "Node (box) tests per ray as `--stats`/`--json` count them (`node_tests_per_ray`; accel/registry.h, "
@@ -259,7 +288,8 @@ def main(args, binary, registry, out, bart, bart_ok, bench, command):
     else:
         baselines = measure_baselines(binary, scenes, size, repeats, bart, bart_ok, bench)
     # Always rerun (unless --report-only): the ratios against the baselines hold only within one run.
-    runner = bench.Runner(binary, bart, out, args.timeout or 900, True)
+    # The stream rows at passtrace's default -l 0: one pass per bounce (issue 17's tuned loop limit).
+    runner = bench.Runner(binary, bart, out, args.timeout or 900, True, loop_limit=None)
     records, wall_s = bench.run_jobs(plan.jobs, runner, args.report_only, "--speed")
     parameters = {"size": size, "repeats": repeats, "scenes": scenes}
     results = bench.section_results(command, wall_s, parameters, plan.skipped, plan.missing, records, binary)

@@ -10,7 +10,7 @@ namespace {
 
 // The largest block a kernel may bind. llvmpipe reports 128 MiB, Mesa's
 // default, yet addresses blocks up to 2 GiB (31-bit byte offsets): measured,
-// a 2048^2 bvh-stack stream's 880 MiB of stacks gives the same hits as
+// a 2880^2 bvh-stack stream's 1.9 GiB of stacks gives the same hits as
 // kk-bvh, and 3.5 GiB crash it. Other drivers: what they report.
 uint64_t blockLimitBytes() {
   GLint64 reported = 0;

@@ -463,5 +463,21 @@ TEST_F(GlTest, StreamSizeOutsideTheGlLimitIsAnError) {
   EXPECT_THROW(InOutStream(4, 4, 9), GlError);
 }
 
+// Past the block size a kernel can address (llvmpipe: 2 GiB, more than the
+// 128 MiB it reports) a buffer is refused with the data's name, before any
+// allocation, instead of crashing the first pass that binds it.
+TEST_F(GlTest, StorageBufferPastTheBlockLimitIsAnError) {
+  StorageBuffer buffer("huge stacks");
+  try {
+    buffer.reserve((uint64_t(1) << 40) / sizeof(float));
+    FAIL() << "a 1 TiB storage buffer was accepted";
+  } catch (const GlError& e) {
+    EXPECT_NE(std::string(e.what()).find("huge stacks: 1048576 MiB exceed"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(buffer.floats(), 0u);
+  buffer.reserve(1024);  // still usable
+  EXPECT_EQ(buffer.floats(), 1024u);
+}
+
 }  // namespace
 }  // namespace passtrace
