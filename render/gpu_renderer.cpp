@@ -47,13 +47,20 @@ GpuRenderer::GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width,
   if (compact != Compaction::Off) compaction_ = std::make_unique<StreamCompaction>(rays_, kStateSurface);
 }
 
+double GpuRenderer::extraBytesPerPixel(const ShadingConfig& shading, Compaction compact) {
+  double bytes = 0;
+  if (shading.mode == ShadingMode::Whitted) bytes += sizeof(float) * kWhittedStackFloats * kWhittedStackSize;
+  if (compact != Compaction::Off) bytes += StreamCompaction::bytesPerElement(kRaySurfaceCount);
+  return bytes;
+}
+
 void GpuRenderer::makeMixKernel() {
   const char* samplers[] = {"uOrigin", "uDirection", "uState", "uHit", "uColor", "uThroughput", "uPending"};
   if (shading_.mode == ShadingMode::Whitted) {
     whittedMaterials_ =
         std::make_unique<ConstInputStream>(whittedMaterialTexels(scene_), "whitted materials", maxPageTexels_);
     whittedStacks_ = std::make_unique<StorageBuffer>("whitted ray stacks");
-    whittedStacks_->reserve(uint64_t(rays_.elementCount()) * 12u * uint64_t(kWhittedStackSize));
+    whittedStacks_->reserve(uint64_t(rays_.elementCount()) * kWhittedStackFloats * uint64_t(kWhittedStackSize));
     mixShade_ = std::make_unique<StreamKernel>(
         "shade_whitted", "shade_whitted.frag", StreamKernel::Depth::Test,
         std::vector<std::string>{streamPagesDefine({triangles_.get(), whittedMaterials_.get()}),

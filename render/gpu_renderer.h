@@ -33,6 +33,11 @@ class GpuRenderer {
 
   InOutStream& rays() { return rays_; }
 
+  // Bytes per pixel this renderer keeps beyond the ray stream the memory
+  // check counts for every GL run (render/memory_check.h): the Whitted ray
+  // stacks and the compaction's second stream.
+  static double extraBytesPerPixel(const ShadingConfig& shading, Compaction compact);
+
   // The scene's triangles moved (--frames with --dynamic, the same count):
   // re-uploads their shading data and the light; the kernels stay compiled.
   void trianglesMoved();

@@ -36,7 +36,8 @@ double bytesPerTriangle(RendererId renderer, const Structure& s) {
 
 }  // namespace
 
-uint64_t estimatedRunBytes(RendererId renderer, const Structure* structure, uint64_t triangles, uint64_t pixels) {
+uint64_t estimatedRunBytes(RendererId renderer, const Structure* structure, uint64_t triangles, uint64_t pixels,
+                           double extraBytesPerPixel) {
   double perTriangle = kPreviewBytesPerTriangle;
   if (structure) {
     perTriangle = bytesPerTriangle(renderer, *structure);
@@ -46,7 +47,7 @@ uint64_t estimatedRunBytes(RendererId renderer, const Structure* structure, uint
         if (s.runsOn(renderer)) perTriangle = std::max(perTriangle, bytesPerTriangle(renderer, s));
   }
   const bool gl = renderer == RendererId::Gpu || renderer == RendererId::OpenGl;
-  const double perPixel = gl ? kGpuBytesPerPixel : kCpuBytesPerPixel;
+  const double perPixel = (gl ? kGpuBytesPerPixel : kCpuBytesPerPixel) + extraBytesPerPixel;
   return uint64_t(kMargin * (kBaseBytes + perTriangle * double(triangles) + perPixel * double(pixels)));
 }
 
@@ -71,10 +72,10 @@ std::optional<uint64_t> availableMemoryBytes() {
 }
 
 void checkRunFitsInMemory(const std::string& scene, RendererId renderer, const Structure* structure,
-                          uint64_t triangles, uint64_t pixels) {
+                          uint64_t triangles, uint64_t pixels, double extraBytesPerPixel) {
   const auto available = availableMemoryBytes();
   if (!available) return;  // nothing to compare with: try
-  const uint64_t needed = estimatedRunBytes(renderer, structure, triangles, pixels);
+  const uint64_t needed = estimatedRunBytes(renderer, structure, triangles, pixels, extraBytesPerPixel);
   if (needed <= *available) return;
   throw std::runtime_error(scene + ": " + std::to_string(triangles) + " triangles with " +
                            std::string(structure ? structure->name : "preview") + " on the " +

@@ -15,7 +15,10 @@ namespace passtrace {
 
 // Peak resident bytes of a run of `structure` (null for the preview) on
 // `renderer` over `triangles` triangles and `pixels` pixels, with a 25 % margin.
-uint64_t estimatedRunBytes(RendererId renderer, const Structure* structure, uint64_t triangles, uint64_t pixels);
+// `extraBytesPerPixel`: what the renderer keeps per pixel beyond its base
+// (GpuRenderer::extraBytesPerPixel: Whitted stacks, the compaction stream).
+uint64_t estimatedRunBytes(RendererId renderer, const Structure* structure, uint64_t triangles, uint64_t pixels,
+                           double extraBytesPerPixel = 0);
 
 // MemAvailable from /proc/meminfo, lowered to the cgroup's memory.max less
 // its current use where one is set; nullopt when neither can be read.
@@ -25,6 +28,6 @@ std::optional<uint64_t> availableMemoryBytes();
 // renderer need about X GiB; Y GiB available (nothing was built)") when the
 // estimate exceeds what is available.
 void checkRunFitsInMemory(const std::string& scene, RendererId renderer, const Structure* structure,
-                          uint64_t triangles, uint64_t pixels);
+                          uint64_t triangles, uint64_t pixels, double extraBytesPerPixel = 0);
 
 }  // namespace passtrace

@@ -12,6 +12,7 @@
 #include "render/camera_path.h"
 #include "render/cone_session.h"
 #include "render/dynamic_renderer.h"
+#include "render/gpu_renderer.h"
 #include "render/heatmap.h"
 #include "render/image_output.h"
 #include "render/memory_check.h"
@@ -63,6 +64,11 @@ std::vector<CameraSpec> cameraViews(const Scene& scene, const RunSettings& o) {
 // "out.png", k -> "out_k.png"
 fs::path numberedPath(const fs::path& path, int k) {
   return path.parent_path() / (path.stem().string() + "_" + std::to_string(k) + path.extension().string());
+}
+
+// What the chosen renderer keeps per pixel beyond the memory check's base.
+double extraBytesPerPixel(const RunSettings& o) {
+  return o.renderer == RendererId::Gpu ? GpuRenderer::extraBytesPerPixel(o.shading, o.gpu.compact) : 0.0;
 }
 
 void checkOutputs(const RunSettings& o) {
@@ -243,7 +249,8 @@ RunReport renderSequence(const RunSettings& o, Progress& progress) {
         sceneOptions.time = time;
         scene = loadScene(o.scene, sceneOptions);  // in place: the dynamic renderer holds a reference
       }
-      checkRunFitsInMemory(o.scene, o.renderer, p.structure, scene.triangles.size(), uint64_t(o.width) * uint64_t(o.height));
+      checkRunFitsInMemory(o.scene, o.renderer, p.structure, scene.triangles.size(), uint64_t(o.width) * uint64_t(o.height),
+                           extraBytesPerPixel(o));
       if (scene.triangles.empty()) throw std::runtime_error(o.scene + ": the scene has no triangles");
       // The static tree is built in the first frame's coordinates.
       if (keepsStatic && scene.scaleExponent != firstScaleExponent)
@@ -333,10 +340,11 @@ RunReport runSession(const RunSettings& o, Progress& progress) {
   // made, a file's once it is read.
   const uint64_t pixels = uint64_t(o.width) * uint64_t(o.height);
   if (o.scene == "spheres")
-    checkRunFitsInMemory(o.scene, o.renderer, structure, sphereFieldTriangles(o.sceneOptions.triangles), pixels);
+    checkRunFitsInMemory(o.scene, o.renderer, structure, sphereFieldTriangles(o.sceneOptions.triangles), pixels,
+                         extraBytesPerPixel(o));
   progress.stage("loading " + o.scene);
   const Scene scene = loadScene(o.scene, o.sceneOptions);
-  checkRunFitsInMemory(o.scene, o.renderer, structure, scene.triangles.size(), pixels);
+  checkRunFitsInMemory(o.scene, o.renderer, structure, scene.triangles.size(), pixels, extraBytesPerPixel(o));
   if (scene.triangles.empty()) throw std::runtime_error(o.scene + ": the scene has no triangles");
   if (std::none_of(scene.triangles.begin(), scene.triangles.end(), hasArea)) {
     report.warnings.push_back(o.scene + ": every triangle has zero area; only the background is visible");

@@ -31,6 +31,9 @@ inline constexpr float kAoDistanceFraction = 0.1f;
 // shadow rays to the second and further lights). A push onto a full stack
 // drops the new ray (both renderers).
 inline constexpr int kWhittedStackSize = 16;
+// Floats per entry of the GPU renderer's Whitted stacks (shade_whitted.frag:
+// origin and depth, direction and tMax, throughput and kind).
+inline constexpr int kWhittedStackFloats = 12;
 // Whitted: shadow rays go to the scene's first this many lights (Scene::lights).
 inline constexpr int kWhittedMaxLights = 8;
 // Whitted: a branch whose throughput falls below this in every channel is not

@@ -27,6 +27,9 @@ class StreamCompaction {
   // element retired. Leaves compact() enabled for the caller's passes.
   void gather(uint64_t live);
   InOutStream& compact() { return compact_; }
+  // Memory per element of a stream of `surfaces` surfaces that compaction
+  // adds: the compact stream (RGBA32F surfaces and depth) and two indices.
+  static double bytesPerElement(int surfaces) { return 16.0 * surfaces + 4 + 8; }
   // Retires finished elements of compact(); returns how many (the cull of
   // compact(), for GpuTraversal::trace).
   uint64_t retire() { return cull_.execute(true); }

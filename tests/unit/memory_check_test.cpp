@@ -1,0 +1,32 @@
+// The memory check's estimate (render/memory_check.h) counts what the GPU
+// renderer keeps per pixel beyond its ray stream: the Whitted ray stacks and
+// the compaction's second stream (GpuRenderer::extraBytesPerPixel).
+#include <gtest/gtest.h>
+
+#include "render/gpu_renderer.h"
+#include "render/memory_check.h"
+
+namespace passtrace {
+namespace {
+
+TEST(MemoryCheck, GpuRendererCountsItsWhittedStacksAndCompactionStream) {
+  ShadingConfig thesis, whitted;
+  whitted.mode = ShadingMode::Whitted;
+  EXPECT_EQ(GpuRenderer::extraBytesPerPixel(thesis, Compaction::Off), 0.0);
+  // 16 entries of 12 floats.
+  EXPECT_EQ(GpuRenderer::extraBytesPerPixel(whitted, Compaction::Off), 768.0);
+  // 8 RGBA32F surfaces, depth, two indices.
+  EXPECT_EQ(GpuRenderer::extraBytesPerPixel(thesis, Compaction::On), 140.0);
+  EXPECT_EQ(GpuRenderer::extraBytesPerPixel(whitted, Compaction::Always), 908.0);
+}
+
+TEST(MemoryCheck, ExtraBytesPerPixelGrowTheEstimateWithItsMargin) {
+  const Structure& kk = *findStructure("kk-bvh");
+  const uint64_t pixels = 1920 * 1080;
+  const uint64_t base = estimatedRunBytes(RendererId::Gpu, &kk, 100000, pixels);
+  const uint64_t whitted = estimatedRunBytes(RendererId::Gpu, &kk, 100000, pixels, 768.0);
+  EXPECT_NEAR(double(whitted - base), 1.25 * 768.0 * double(pixels), 2.0);
+}
+
+}  // namespace
+}  // namespace passtrace
