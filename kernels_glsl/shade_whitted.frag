@@ -76,6 +76,7 @@ float schlick(float ior, float cosine) {
 }
 
 void main() {
+  if (gl_HelperInvocation) return;  // its storage reads may lie past the buffer (docs/design.md)
   vec4 origin = readElement(uOrigin);
   vec4 direction = readElement(uDirection);
   vec4 state = readElement(uState);

@@ -79,6 +79,7 @@ void checkOutputs(const RunSettings& o) {
   if (!o.hits.empty()) {
     checkWritable(o.hits);
     if (fs::path(o.hits).extension() != ".exr") throw std::runtime_error(o.hits + ": hit buffers are OpenEXR (.exr) files");
+    checkImageFormat(o.hits);
   }
   if (!o.json.empty()) checkWritable(o.json);
   if (!o.heatmap.empty()) {

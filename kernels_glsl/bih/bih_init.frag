@@ -17,6 +17,7 @@ layout(location = 0) out vec4 outState;  // packed node, steps, tests, hasWork
 layout(location = 1) out vec4 outAux;    // mode, tMin, tMax, 0
 
 void main() {
+  if (gl_HelperInvocation) return;  // its storage reads may lie past the buffer (docs/design.md)
   vec4 origin = readElement(uOrigin);
   vec4 direction = readElement(uDirection);
   float tNear, tFar;

@@ -26,6 +26,9 @@ layout(location = 1) out vec4 outHit;
 layout(location = 2) out vec4 outAux;
 
 void main() {
+  // Helper lanes' storage writes are discarded (their walk could loop to -l) and reads may lie past
+  // the buffer (docs/design.md).
+  if (gl_HelperInvocation) return;
   vec4 origin = readElement(uOrigin);
   vec4 direction = readElement(uDirection);
   vec4 state = readElement(uState);

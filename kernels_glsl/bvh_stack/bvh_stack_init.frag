@@ -11,6 +11,7 @@ layout(location = 0) out vec4 outState;  // packed link, steps, tests, hasWork
 layout(location = 1) out vec4 outAux;    // count, 0, 0, 0
 
 void main() {
+  if (gl_HelperInvocation) return;  // its storage reads may lie past the buffer (docs/design.md)
   outState = vec4(packIndex(0u), 0.0, 0.0, uEmpty ? 0.0 : 1.0);
   outAux = vec4(0.0);
   bvhRecords[bvhRecordBase()] = packIndex(0u);

@@ -12,6 +12,9 @@
 // uTriBase.
 
 void main() {
+  // Helper lanes' storage writes are discarded (their walk could loop to -l) and reads may lie past
+  // the buffer (docs/design.md).
+  if (gl_HelperInvocation) return;
   loadRecord(uvec2(gl_FragCoord.xy));
   if (phase >= 2.0) discard;
   if (phase == 0.0) {
