@@ -63,6 +63,6 @@ struct WideBvhConfig {
 
 // Greedy collapse: a wide node adopts its binary node's two children, then
 // keeps opening the inner child of largest surface area until it has eight.
-WideBvh collapseToWideBvh(const BinaryBvh& bvh, std::span<const Triangle> tris, const WideBvhConfig& config = {});
+WideBvh collapseToWideBvh(const SahBinaryBvh& bvh, std::span<const Triangle> tris, const WideBvhConfig& config = {});
 
 }  // namespace passtrace

@@ -22,7 +22,7 @@ public:
       : tris_(tris), test_(test) {
     const auto start = std::chrono::steady_clock::now();
     const SahBuildConfig sah;
-    const BinaryBvh binary = buildBinnedSahBvh(tris, sah);
+    const SahBinaryBvh binary = buildBinnedSahBvh(tris, sah);
     bvh_ = collapseToWideBvh(binary, tris);
     stats_.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     stats_.name = packets ? "bvh8-packet" : "bvh8";
