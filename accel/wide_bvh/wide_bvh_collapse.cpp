@@ -77,6 +77,11 @@ private:
     std::vector<uint32_t>& prims = scratch_;  // reused: one leaf at a time
     prims.clear();
     gather(b, prims);
+    // An SBVH's merged subtrees may reference a triangle more than once: test it once.
+    auto kept = prims.begin();
+    for (const uint32_t id : prims)
+      if (std::find(prims.begin(), kept, id) == kept) *kept++ = id;
+    prims.erase(kept, prims.end());
     const uint32_t first = uint32_t(out_.packs.size());
     const uint32_t packs = uint32_t((prims.size() + kTrianglePackWidth - 1) / kTrianglePackWidth);
     for (uint32_t p = 0; p < packs; ++p) {
