@@ -56,7 +56,8 @@ void expectValidConversion(const SahBinaryBvh& bvh, std::span<const Triangle> tr
       if (node.leaf()) {
         EXPECT_LE(node.count, maxLeafSize) << "node " << n;
         ASSERT_LE(node.first + node.count, bvh.prims.size());
-        for (uint32_t i = node.first; i < node.first + node.count; ++i) leafBoxes.at(bvh.prims[i]).push_back(node.bounds);
+        for (uint32_t i = node.first; i < node.first + node.count; ++i)
+          leafBoxes.at(bvh.prims[i]).push_back(node.bounds);
         continue;
       }
       for (const uint32_t c : {node.first, node.first + 1}) {
