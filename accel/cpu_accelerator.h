@@ -17,6 +17,7 @@
 #include "accel/geometry/geometry.h"
 #include "accel/geometry/triangle_test.h"
 #include "accel/kd/kd_build_options.h"
+#include "accel/wide_bvh/bvh8_builder_kind.h"
 #include "accel/traversal_stats.h"
 
 namespace passtrace {
@@ -55,6 +56,7 @@ struct AccelBuildConfig {
   bool dacrtCones = false;  // --dacrt-cones: conic packets of 8x8 primary rays (and shadow rays)
   bool dacrtMedianSplit = false;  // --dacrt-split median: always the spatial median (the seed's baseline)
   BvhBuilderKind bvhBuilder = BvhBuilderKind::Sah;  // --bvh-builder: the stack BVH's builder
+  Bvh8BuilderKind bvh8Builder = Bvh8BuilderKind::Binned;  // --bvh8-builder: the tree bvh8 is collapsed from
 };
 
 // One generation of rays handed to a batch tracer at once (the CPU renderer

@@ -65,6 +65,7 @@ enum class BuildParam {
   DacrtCones,      // --dacrt-cones: DACRT's conic packets (dacrtCones)
   DacrtSplit,      // --dacrt-split: DACRT's split position, mean or median (dacrtMedianSplit)
   BvhBuilder,      // --bvh-builder: the stack BVH's sah, sbvh or middle builder (bvhBuilder)
+  Bvh8Builder,     // --bvh8-builder: the binned or sbvh binary tree bvh8 is collapsed from (bvh8Builder)
 };
 // The flag a parameter is given with, as --help shows it ("-g/--grid-multiplier").
 std::string_view buildParamFlag(BuildParam param);
@@ -77,7 +78,8 @@ inline constexpr BuildParam kBuildParams[] = {
     BuildParam::LoopLimit,     BuildParam::PageTexels, BuildParam::TriangleTest,
     BuildParam::KdStackSize,   BuildParam::KdBuilder,  BuildParam::KdTermination,
     BuildParam::Dynamic,       BuildParam::DacrtRLimit, BuildParam::DacrtPLimit, BuildParam::DacrtCones,
-    BuildParam::DacrtSplit, BuildParam::BvhBuilder};
+    BuildParam::DacrtSplit, BuildParam::BvhBuilder,
+    BuildParam::Bvh8Builder};
 
 // Peak resident bytes per triangle of a run, measured (apps' memory check):
 // the slope between 1 M and 2 M triangles of the procedural "spheres" scene,

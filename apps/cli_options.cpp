@@ -131,6 +131,10 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
                  "bvh-stack: binned SAH (sah), split BVH with spatial splits (sbvh, Stich et al. 2009) or the "
                  "middle of the centroid box's largest axis (middle)")
       ->check(CLI::IsMember({"sah", "sbvh", "middle"}))->capture_default_str();
+  app.add_option("--bvh8-builder", o.bvh8Builder,
+                 "bvh8, bvh8-packet: the binary tree collapsed to 8 wide, binned SAH on all cores (binned) or split "
+                 "BVH with spatial splits on one thread (sbvh, Stich et al. 2009; references <= 2x triangles)")
+      ->check(CLI::IsMember({"binned", "sbvh"}))->capture_default_str();
   app.add_option("--heatmap", o.heatmap, "write per-pixel traversal steps (all bounces) as a heat map image");
   app.add_flag("--stats", o.stats, "print the structure's memory and the per-ray step statistics");
   app.add_flag("-q,--quiet", o.quiet, "print nothing but errors");
@@ -223,7 +227,8 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
                            "--grid-kernels", "--loop-limit", "--page-texels", "--triangle-test", "--stack-size",
                            "--kd-builder", "--kd-termination", "--dynamic",
                            "--dacrt-rlimit", "--dacrt-plimit", "--dacrt-cones", "--dacrt-split",
-                           "--bvh-builder"})
+                           "--bvh-builder",
+                           "--bvh8-builder"})
     if (app.count(flag)) o.givenFlags.emplace_back(flag);
   return 0;
 }

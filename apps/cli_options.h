@@ -58,6 +58,7 @@ struct Options {
   bool dacrtCones = false;          // --dacrt-cones: DACRT's conic packets
   std::string dacrtSplit = "mean";  // --dacrt-split: mean (the seed's) or median
   std::string bvhBuilder = "sah";   // --bvh-builder: the stack BVH's sah, sbvh or middle builder
+  std::string bvh8Builder = "binned";  // --bvh8-builder: bvh8's binary tree, binned or sbvh
   std::string heatmap;              // --heatmap: per-pixel traversal steps as an image
   std::string exportPath;           // --export: write the scene's triangles (.obj/.gltf/.glb) and exit
   int frames = 0;                   // --frames N: render a sequence over the animation (0: one frame at --time)

@@ -32,6 +32,7 @@ RunSettings toRunSettings(const Options& o) {
   build.dacrtRLimit = o.dacrtRLimit, build.dacrtPLimit = o.dacrtPLimit, build.dacrtCones = o.dacrtCones;
   build.dacrtMedianSplit = o.dacrtSplit == "median";
   build.bvhBuilder = *bvhBuilderByName(o.bvhBuilder);  // the parser accepts only valid names
+  build.bvh8Builder = *bvh8BuilderByName(o.bvh8Builder);
   s.gpu.loopLimit = o.loopLimit;
   s.gpu.gridKernels = o.gridKernels == "split" ? GridKernels::Split : GridKernels::Merged;
   s.gpu.maxPageTexels = o.pageTexels;
@@ -61,7 +62,8 @@ RunSettings toRunSettings(const Options& o) {
       {"--dynamic", BuildParam::Dynamic},
       {"--dacrt-rlimit", BuildParam::DacrtRLimit},    {"--dacrt-plimit", BuildParam::DacrtPLimit},
       {"--dacrt-cones", BuildParam::DacrtCones},      {"--dacrt-split", BuildParam::DacrtSplit},
-      {"--bvh-builder", BuildParam::BvhBuilder}};
+      {"--bvh-builder", BuildParam::BvhBuilder},
+      {"--bvh8-builder", BuildParam::Bvh8Builder}};
   for (const std::string& flag : o.givenFlags) s.givenParams.push_back(kFlags.at(flag));
   if (o.frames == 0 && std::count(s.givenParams.begin(), s.givenParams.end(), BuildParam::Dynamic))
     throw std::runtime_error("--dynamic chooses how a --frames sequence updates its structure: it needs --frames");

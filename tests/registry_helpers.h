@@ -72,6 +72,9 @@ inline std::vector<std::pair<int, std::string>> everyStructureRun() {
       // The stack BVH's non-default builders (sah is the default run above).
       if (std::find(reads.begin(), reads.end(), BuildParam::BvhBuilder) != reads.end())
         for (const char* b : {"sbvh", "middle"}) runs.emplace_back(int(r), std::string(s.name) + " --bvh-builder " + b);
+      // bvh8's spatial-split build (binned is the default run above).
+      if (std::find(reads.begin(), reads.end(), BuildParam::Bvh8Builder) != reads.end())
+        runs.emplace_back(int(r), std::string(s.name) + " --bvh8-builder sbvh");
     }
   return runs;
 }

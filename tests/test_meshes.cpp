@@ -254,4 +254,16 @@ std::vector<Ray> rayMix(const Aabb& bounds, size_t countPerKind, uint64_t seed) 
   return rays;
 }
 
+std::vector<Triangle> longThinTriangles(size_t count, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<Triangle> tris;
+  for (size_t i = 0; i < count; ++i) {
+    const glm::vec3 a(unit(rng) * 0.1f, unit(rng) * 0.1f, unit(rng));
+    const glm::vec3 b(10.0f - unit(rng) * 0.1f, 10.0f - unit(rng) * 0.1f, unit(rng));
+    tris.push_back({a, b, a + glm::vec3(0.02f, 0.0f, 0.01f)});
+  }
+  return tris;
+}
+
 }  // namespace passtrace::testmesh

@@ -87,4 +87,10 @@ std::vector<Ray> makeRays(RayKind kind, const Aabb& bounds, size_t count, uint64
 // All four kinds, `countPerKind` of each, half of them with finite tMax.
 std::vector<Ray> rayMix(const Aabb& bounds, size_t countPerKind, uint64_t seed);
 
+// Long thin triangles along the xy diagonal of a 10 x 10 x 1 box: each one's
+// box is nearly the whole box, so every object split overlaps completely,
+// while halving them at x = 5 halves their boxes in x and y (where spatial
+// splits pay).
+std::vector<Triangle> longThinTriangles(size_t count, uint64_t seed);
+
 }  // namespace passtrace::testmesh

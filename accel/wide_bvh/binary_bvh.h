@@ -13,18 +13,21 @@
 
 namespace passtrace {
 
+// Named apart from bvh_stack's BinaryBvh (accel/bvh_stack/binary_bvh.h, the
+// Aila–Laine layout): both link into the same binaries, so one name for two
+// types would break the one-definition rule.
 // A leaf when count > 0 (prims[first, first + count)); otherwise its children
 // are nodes[first] and nodes[first + 1].
-struct BinaryBvhNode {
+struct SahBinaryBvhNode {
   Aabb bounds;
   uint32_t first = 0;
   uint32_t count = 0;
   bool leaf() const { return count > 0; }
 };
 
-struct BinaryBvh {
-  std::vector<BinaryBvhNode> nodes;  // nodes[0] is the root; empty for no triangles
-  std::vector<uint32_t> prims;       // triangle indices, leaf by leaf
+struct SahBinaryBvh {
+  std::vector<SahBinaryBvhNode> nodes;  // nodes[0] is the root; empty for no triangles
+  std::vector<uint32_t> prims;          // triangle indices, leaf by leaf
 };
 
 struct SahBuildConfig {
@@ -39,14 +42,14 @@ struct SahBuildConfig {
   uint32_t parallelGrain = 4096;  // nodes with more triangles split into parallel tasks
 };
 
-BinaryBvh buildBinnedSahBvh(std::span<const Triangle> tris, const SahBuildConfig& config = {});
+SahBinaryBvh buildBinnedSahBvh(std::span<const Triangle> tris, const SahBuildConfig& config = {});
 // Sorts every node's triangles by centroid on each axis and tries every split.
-BinaryBvh buildExactSahBvh(std::span<const Triangle> tris, const SahBuildConfig& config = {});
+SahBinaryBvh buildExactSahBvh(std::span<const Triangle> tris, const SahBuildConfig& config = {});
 
 // Expected cost of a ray that hits the root box (Haines/MacDonald & Booth):
 // sum of K_T SA(inner) / SA(root) plus K_I n SA(leaf) / SA(root); 0 when empty.
-double bvhSahCost(const BinaryBvh& bvh, const SahBuildConfig& config = {});
+double bvhSahCost(const SahBinaryBvh& bvh, const SahBuildConfig& config = {});
 // Levels of the tree (a single leaf is 1).
-uint32_t bvhDepth(const BinaryBvh& bvh);
+uint32_t bvhDepth(const SahBinaryBvh& bvh);
 
 }  // namespace passtrace

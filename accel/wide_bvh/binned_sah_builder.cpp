@@ -98,7 +98,7 @@ struct Binner {
 
 class Builder {
 public:
-  Builder(std::span<const Triangle> tris, const SahBuildConfig& config, BinaryBvh& out)
+  Builder(std::span<const Triangle> tris, const SahBuildConfig& config, SahBinaryBvh& out)
       : config_(config), out_(out), bins_(std::clamp(config.bins, 2, kMaxBins)) {
     const size_t n = tris.size();
     prims_ = std::make_unique_for_overwrite<Prim[]>(n);
@@ -133,7 +133,7 @@ public:
     out.nodes.resize(next_.load());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, out.nodes.size(), 16384), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t i = r.begin(); i != r.end(); ++i)
-        out.nodes[i] = BinaryBvhNode{nodes_[i].bounds.aabb(), nodes_[i].first, nodes_[i].count};
+        out.nodes[i] = SahBinaryBvhNode{nodes_[i].bounds.aabb(), nodes_[i].first, nodes_[i].count};
     });
   }
 
@@ -247,7 +247,7 @@ private:
   }
 
   const SahBuildConfig& config_;
-  BinaryBvh& out_;
+  SahBinaryBvh& out_;
   int bins_;
   std::unique_ptr<Prim[]> prims_;
   std::unique_ptr<RawNode[]> nodes_;
@@ -256,13 +256,13 @@ private:
 
 }  // namespace
 
-BinaryBvh buildBinnedSahBvh(std::span<const Triangle> tris, const SahBuildConfig& config) {
-  BinaryBvh bvh;
+SahBinaryBvh buildBinnedSahBvh(std::span<const Triangle> tris, const SahBuildConfig& config) {
+  SahBinaryBvh bvh;
   Builder(tris, config, bvh);
   return bvh;
 }
 
-double bvhSahCost(const BinaryBvh& bvh, const SahBuildConfig& config) {
+double bvhSahCost(const SahBinaryBvh& bvh, const SahBuildConfig& config) {
   if (bvh.nodes.empty()) return 0.0;
   const double rootArea = bvh.nodes[0].bounds.surfaceArea();
   // Summed in tree order, not array order: parallel builds number nodes in
@@ -270,7 +270,7 @@ double bvhSahCost(const BinaryBvh& bvh, const SahBuildConfig& config) {
   double cost = 0.0;
   std::vector<uint32_t> stack{0};
   while (!stack.empty()) {
-    const BinaryBvhNode& node = bvh.nodes[stack.back()];
+    const SahBinaryBvhNode& node = bvh.nodes[stack.back()];
     stack.pop_back();
     const double w = rootArea > 0.0 ? node.bounds.surfaceArea() / rootArea : 1.0;
     cost += node.leaf() ? config.intersectionCost * node.count * w : config.traversalCost * w;
@@ -279,7 +279,7 @@ double bvhSahCost(const BinaryBvh& bvh, const SahBuildConfig& config) {
   return cost;
 }
 
-uint32_t bvhDepth(const BinaryBvh& bvh) {
+uint32_t bvhDepth(const SahBinaryBvh& bvh) {
   if (bvh.nodes.empty()) return 0;
   uint32_t depth = 0;
   std::vector<std::pair<uint32_t, uint32_t>> stack{{0u, 1u}};  // explicit work stack: (node, level)

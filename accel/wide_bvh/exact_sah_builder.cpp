@@ -15,7 +15,7 @@ namespace {
 
 class ExactBuilder {
 public:
-  ExactBuilder(std::span<const Triangle> tris, const SahBuildConfig& config, BinaryBvh& out)
+  ExactBuilder(std::span<const Triangle> tris, const SahBuildConfig& config, SahBinaryBvh& out)
       : config_(config), out_(out) {
     const size_t n = tris.size();
     bounds_.resize(n);
@@ -93,7 +93,7 @@ private:
   }
 
   const SahBuildConfig& config_;
-  BinaryBvh& out_;
+  SahBinaryBvh& out_;
   std::vector<Aabb> bounds_;
   std::vector<glm::vec3> centroids_;
   std::atomic<uint32_t> next_{0};
@@ -101,8 +101,8 @@ private:
 
 }  // namespace
 
-BinaryBvh buildExactSahBvh(std::span<const Triangle> tris, const SahBuildConfig& config) {
-  BinaryBvh bvh;
+SahBinaryBvh buildExactSahBvh(std::span<const Triangle> tris, const SahBuildConfig& config) {
+  SahBinaryBvh bvh;
   ExactBuilder(tris, config, bvh);
   return bvh;
 }

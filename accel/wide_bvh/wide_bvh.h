@@ -1,5 +1,6 @@
 #pragma once
-// An 8-wide BVH collapsed from a binary SAH BVH (binary_bvh.h). Nodes are
+// An 8-wide BVH collapsed from a binary SAH BVH (binary_bvh.h; or an SBVH's,
+// sbvh_binary_bvh.h, whose leaves may share triangles). Nodes are
 // SoA: the eight child boxes as eight lanes of min/max per axis, so one AVX2
 // instruction tests a slab of all eight. Leaves hold their triangles in SoA
 // packs of four (vertex 0 and the two edges, Möller–Trumbore's inputs) so the
@@ -51,7 +52,7 @@ struct WideBvh {
   std::vector<TrianglePack> packs;
   uint32_t depth = 0;              // wide levels, leaves included
   uint32_t leaves = 0;
-  uint32_t references = 0;         // triangles stored (each once)
+  uint32_t references = 0;         // triangles stored (once per leaf; an SBVH's in several leaves)
   // Entries a traversal stack can need: up to 7 siblings per level.
   uint32_t stackSize() const { return 7 * depth + 8; }
 };
@@ -63,6 +64,6 @@ struct WideBvhConfig {
 
 // Greedy collapse: a wide node adopts its binary node's two children, then
 // keeps opening the inner child of largest surface area until it has eight.
-WideBvh collapseToWideBvh(const BinaryBvh& bvh, std::span<const Triangle> tris, const WideBvhConfig& config = {});
+WideBvh collapseToWideBvh(const SahBinaryBvh& bvh, std::span<const Triangle> tris, const WideBvhConfig& config = {});
 
 }  // namespace passtrace

@@ -16,14 +16,14 @@ WideBvhNode emptyNode() {
 
 class Collapser {
 public:
-  Collapser(const BinaryBvh& bvh, std::span<const Triangle> tris, const WideBvhConfig& config, WideBvh& out)
+  Collapser(const SahBinaryBvh& bvh, std::span<const Triangle> tris, const WideBvhConfig& config, WideBvh& out)
       : bvh_(bvh), tris_(tris), config_(config), out_(out) {
     counts_.resize(bvh.nodes.size());
     out.nodes.reserve(bvh.nodes.size() / 4 + 1);
     out.packs.reserve(bvh.prims.size() / 2 + 1);
     // Children come after their parent, so a reverse sweep sums subtrees first.
     for (size_t i = bvh.nodes.size(); i-- > 0;) {
-      const BinaryBvhNode& n = bvh.nodes[i];
+      const SahBinaryBvhNode& n = bvh.nodes[i];
       counts_[i] = n.leaf() ? n.count : counts_[n.first] + counts_[n.first + 1];
     }
   }
@@ -64,7 +64,7 @@ private:
   bool isLeaf(uint32_t b) const { return bvh_.nodes[b].leaf() || counts_[b] <= config_.mergeLeafTriangles; }
 
   void gather(uint32_t b, std::vector<uint32_t>& prims) const {
-    const BinaryBvhNode& n = bvh_.nodes[b];
+    const SahBinaryBvhNode& n = bvh_.nodes[b];
     if (n.leaf()) {
       prims.insert(prims.end(), bvh_.prims.begin() + n.first, bvh_.prims.begin() + n.first + n.count);
     } else {
@@ -77,6 +77,11 @@ private:
     std::vector<uint32_t>& prims = scratch_;  // reused: one leaf at a time
     prims.clear();
     gather(b, prims);
+    // An SBVH's merged subtrees may reference a triangle more than once: test it once.
+    auto kept = prims.begin();
+    for (const uint32_t id : prims)
+      if (std::find(prims.begin(), kept, id) == kept) *kept++ = id;
+    prims.erase(kept, prims.end());
     const uint32_t first = uint32_t(out_.packs.size());
     const uint32_t packs = uint32_t((prims.size() + kTrianglePackWidth - 1) / kTrianglePackWidth);
     for (uint32_t p = 0; p < packs; ++p) {
@@ -99,7 +104,7 @@ private:
     return kWideLeafBit | ((packs - 1) << 29) | first;
   }
 
-  const BinaryBvh& bvh_;
+  const SahBinaryBvh& bvh_;
   std::span<const Triangle> tris_;
   const WideBvhConfig& config_;
   WideBvh& out_;
@@ -109,7 +114,7 @@ private:
 
 }  // namespace
 
-WideBvh collapseToWideBvh(const BinaryBvh& bvh, std::span<const Triangle> tris, const WideBvhConfig& config) {
+WideBvh collapseToWideBvh(const SahBinaryBvh& bvh, std::span<const Triangle> tris, const WideBvhConfig& config) {
   WideBvh out;
   if (bvh.nodes.empty()) return out;
   Collapser collapser(bvh, tris, config, out);

@@ -10,6 +10,7 @@
 #include <tbb/task_arena.h>
 
 #include "accel/wide_bvh/binary_bvh.h"
+#include "accel/wide_bvh/sbvh_binary_bvh.h"
 #include "accel/wide_bvh/wide_bvh.h"
 #include "accel/wide_bvh/wide_bvh_traversal.h"
 
@@ -18,11 +19,13 @@ namespace {
 
 class Bvh8Accelerator final : public CpuAccelerator {
 public:
-  Bvh8Accelerator(std::span<const Triangle> tris, TriangleTest test, bool packets)
-      : tris_(tris), test_(test) {
+  Bvh8Accelerator(std::span<const Triangle> tris, const AccelBuildConfig& config, bool packets)
+      : tris_(tris), test_(config.triangleTest) {
+    const TriangleTest test = config.triangleTest;
     const auto start = std::chrono::steady_clock::now();
     const SahBuildConfig sah;
-    const BinaryBvh binary = buildBinnedSahBvh(tris, sah);
+    const SahBinaryBvh binary = config.bvh8Builder == Bvh8BuilderKind::Sbvh ? buildSbvhBinaryBvh(tris, sah)
+                                                                             : buildBinnedSahBvh(tris, sah);
     bvh_ = collapseToWideBvh(binary, tris);
     stats_.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     stats_.name = packets ? "bvh8-packet" : "bvh8";
@@ -130,11 +133,11 @@ std::optional<FilterStats> Bvh8Accelerator::traceBatch(const RayBatch& batch, st
 }  // namespace
 
 std::unique_ptr<CpuAccelerator> makeBvh8Cpu(std::span<const Triangle> tris, const AccelBuildConfig& config) {
-  return std::make_unique<Bvh8Accelerator>(tris, config.triangleTest, false);
+  return std::make_unique<Bvh8Accelerator>(tris, config, false);
 }
 
 std::unique_ptr<CpuAccelerator> makeBvh8PacketCpu(std::span<const Triangle> tris, const AccelBuildConfig& config) {
-  return std::make_unique<Bvh8Accelerator>(tris, config.triangleTest, true);
+  return std::make_unique<Bvh8Accelerator>(tris, config, true);
 }
 
 }  // namespace passtrace

@@ -1,6 +1,7 @@
 #pragma once
 // The wide BVH's registry entry (CPU only): binned SAH build on all cores
-// (--threads), collapsed to 8 wide, traversed with AVX2 where the CPU has it
+// (--threads), or with --bvh8-builder sbvh the spatial-split build (one
+// thread; sbvh_binary_bvh.h), collapsed to 8 wide, traversed with AVX2 where the CPU has it
 // (scalar otherwise). Statistics: wide nodes and leaves, the binary tree's SAH
 // cost (binary_bvh.h's constants), floatsPerTriangle = node floats per triangle.
 

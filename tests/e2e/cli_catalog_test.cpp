@@ -111,7 +111,8 @@ const std::vector<std::pair<BuildParam, std::string>> kParamArgs = {
     {BuildParam::TriangleTest, "--triangle-test watertight"},
     {BuildParam::KdStackSize, "--stack-size 2"},
     {BuildParam::KdBuilder, "--kd-builder binned"},   {BuildParam::KdTermination, "--kd-termination papay"},
-    {BuildParam::BvhBuilder, "--bvh-builder sbvh"}};
+    {BuildParam::BvhBuilder, "--bvh-builder sbvh"},
+    {BuildParam::Bvh8Builder, "--bvh8-builder sbvh"}};
 
 // For each renderer of a row: the flags the row reads give no warning; the
 // first flag it does not read gives exactly one, naming the flag.

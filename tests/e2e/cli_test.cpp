@@ -170,6 +170,7 @@ TEST_F(Cli, BadInputsGiveOneLineErrorsAndNoOutput) {
   expectOneLineError(run("-s cornell -r 1 -a dacrt --dacrt-plimit -1" + outs), "--dacrt-plimit");
   expectOneLineError(run("-s cornell -r 1 -a dacrt --dacrt-split middle" + outs), "--dacrt-split");
   expectOneLineError(run("-s cornell -r 1 -a bvh-stack --bvh-builder kd" + outs), "--bvh-builder");
+  expectOneLineError(run("-s cornell -r 1 -a bvh8 --bvh8-builder sah" + outs), "--bvh8-builder");
   expectOneLineError(run("-s cornell -r 1 -w 20000 -o " + path("x.png")), "too large");
   expectOneLineError(run("-s cornell --eye 1,2" + outs), "--eye");
   expectOneLineError(run("-s cornell --eye 1,2,nan" + outs), "--eye");

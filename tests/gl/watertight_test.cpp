@@ -225,10 +225,12 @@ std::vector<Hit> traceGpu(GpuTraversal& traversal) {
 }
 
 // One test per CPU structure and triangle test, so that each has its own
-// time limit and ctest runs them side by side.
+// time limit and ctest runs them side by side; the rows that read
+// --bvh8-builder also with the SBVH build (clipped leaf boxes; suffix _sbvh).
 struct CpuCase {
   std::string structure;
   TriangleTest test;
+  bool sbvh = false;
 };
 
 std::vector<CpuCase> cpuCases() {
@@ -236,6 +238,12 @@ std::vector<CpuCase> cpuCases() {
   for (const TriangleTest test : {TriangleTest::MollerTrumbore, TriangleTest::Watertight})
     for (const Structure& s : structures())
       if (s.runsOn(RendererId::Cpu)) cases.push_back({std::string(s.name), test});
+  for (const TriangleTest test : {TriangleTest::MollerTrumbore, TriangleTest::Watertight})
+    for (const Structure& s : structures()) {
+      const auto reads = s.readsOn(RendererId::Cpu);
+      if (std::find(reads.begin(), reads.end(), BuildParam::Bvh8Builder) != reads.end())
+        cases.push_back({std::string(s.name), test, true});
+    }
   return cases;
 }
 
@@ -243,7 +251,9 @@ class WatertightCpu : public ::testing::TestWithParam<CpuCase> {};
 
 TEST_P(WatertightCpu, Structure) {
   const CpuCase& c = GetParam();
-  const auto accelerator = makeCpuStructure(c.structure, data().sphere.tris, buildConfig(c.test));
+  AccelBuildConfig config = buildConfig(c.test);
+  if (c.sbvh) config.bvh8Builder = Bvh8BuilderKind::Sbvh;
+  const auto accelerator = makeCpuStructure(c.structure, data().sphere.tris, config);
   checkHits("cpu", accelerator->name(), c.test, traceCpu(*accelerator));
 }
 
@@ -274,7 +284,8 @@ TEST_P(WatertightGpu, AllStructures) {
 
 INSTANTIATE_TEST_SUITE_P(AllStructures, WatertightCpu, ::testing::ValuesIn(cpuCases()), [](const auto& info) {
   const bool watertight = info.param.test == TriangleTest::Watertight;
-  return testing_registry::caseName(info.param.structure) + (watertight ? "_watertight" : "_moller_trumbore");
+  return testing_registry::caseName(info.param.structure) + (watertight ? "_watertight" : "_moller_trumbore") +
+         (info.param.sbvh ? "_sbvh" : "");
 });
 INSTANTIATE_TEST_SUITE_P(BothTests, WatertightGpu,
                          ::testing::Values(TriangleTest::MollerTrumbore, TriangleTest::Watertight),

@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
     return std::chrono::duration<double, std::milli>(b - a).count();
   };
   std::vector<double> build, collapse, cpu;
-  BinaryBvh binned;
+  SahBinaryBvh binned;
   for (int r = 0; r < repeats; ++r) {
     const std::clock_t c0 = std::clock();
     const auto t0 = Clock::now();
@@ -71,7 +71,7 @@ int main(int argc, char** argv) {
               collapse[0], n / (build[0] + collapse[0]) / 1e3, cpu[0], n / cpu[0] / 1e3, bvhSahCost(binned));
   if (exact) {
     const auto t0 = Clock::now();
-    const BinaryBvh reference = buildExactSahBvh(scene.triangles);
+    const SahBinaryBvh reference = buildExactSahBvh(scene.triangles);
     const double exactMs = ms(t0, Clock::now());
     std::printf("exact sweep build %.1f ms; SAH exact %.3f; binned / exact = %.4f\n", exactMs,
                 bvhSahCost(reference), bvhSahCost(binned) / bvhSahCost(reference));

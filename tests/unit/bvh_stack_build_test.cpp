@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -40,20 +39,7 @@ bool finiteTriangle(const Triangle& t) {
   return true;
 }
 
-// Long thin triangles along the xy diagonal of a 10 x 10 x 1 box: each one's
-// box is nearly the whole box, so every object split overlaps completely,
-// while halving them at x = 5 halves their boxes in x and y.
-std::vector<Triangle> longThinTriangles(size_t count, uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-  std::vector<Triangle> tris;
-  for (size_t i = 0; i < count; ++i) {
-    const glm::vec3 a(unit(rng) * 0.1f, unit(rng) * 0.1f, unit(rng));
-    const glm::vec3 b(10.0f - unit(rng) * 0.1f, 10.0f - unit(rng) * 0.1f, unit(rng));
-    tris.push_back({a, b, a + glm::vec3(0.02f, 0.0f, 0.01f)});
-  }
-  return tris;
-}
+using testmesh::longThinTriangles;
 
 // Structural checks of one build.
 void expectValid(const BinaryBvh& bvh, std::span<const Triangle> tris, bool clipped) {

@@ -47,6 +47,7 @@ TEST(CliDefaults, EqualTheRegistrysBuildParameterDefaults) {
   EXPECT_EQ(o.dacrtCones ? "on" : "off", value(BuildParam::DacrtCones));
   EXPECT_EQ(o.dacrtSplit, value(BuildParam::DacrtSplit));
   EXPECT_EQ(o.bvhBuilder, value(BuildParam::BvhBuilder));
+  EXPECT_EQ(o.bvh8Builder, value(BuildParam::Bvh8Builder));
 }
 
 TEST(CliDefaults, EveryBuildParameterHasAFlagAndADefault) {

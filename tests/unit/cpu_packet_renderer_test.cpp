@@ -1,4 +1,4 @@
-// The CPU renderer's packet path (bvh8-packet: 8x8 tiles, closest-hit packets
+// The CPU renderer's packet path (bvh8-packet, binned and --bvh8-builder sbvh builds: 8x8 tiles, closest-hit packets
 // of 32 and shadow packets of up to 64 read straight from the paths) against
 // brute force on whole images with shadow rays: the same colour in every pixel
 // but for a few ties in t. Image sizes that are not multiples of 8 give the
@@ -20,6 +20,7 @@ namespace {
 struct Case {
   std::string scene;
   int width, height, bounces;
+  Bvh8BuilderKind builder = Bvh8BuilderKind::Binned;
 };
 
 class CpuPacketRenderer : public ::testing::TestWithParam<Case> {};
@@ -30,7 +31,9 @@ TEST_P(CpuPacketRenderer, ImagesEqualBruteForceButForTies) {
   SceneOptions options;
   options.triangles = 3000;  // spheres: small enough for brute force
   const Scene scene = loadScene(c.scene, options);
-  const auto packets = makeBvh8PacketCpu(scene.triangles, AccelBuildConfig{});
+  AccelBuildConfig config;
+  config.bvh8Builder = c.builder;
+  const auto packets = makeBvh8PacketCpu(scene.triangles, config);
   const auto brute = makeBruteForceAccelerator(scene.triangles);
   ASSERT_GT(packets->packetSize(), 32) << "shadow packets of up to 64 rays";
   const FrameResult got = CpuRenderer(scene, *packets, 2).render(scene.camera, c.width, c.height, c.bounces, true);
@@ -50,8 +53,12 @@ TEST_P(CpuPacketRenderer, ImagesEqualBruteForceButForTies) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, CpuPacketRenderer,
-                         ::testing::Values(Case{"cornell", 61, 45, 3}, Case{"spheres", 70, 37, 2}),
-                         [](const auto& info) { return info.param.scene; });
+                         ::testing::Values(Case{"cornell", 61, 45, 3}, Case{"spheres", 70, 37, 2},
+                                           Case{"cornell", 61, 45, 3, Bvh8BuilderKind::Sbvh},
+                                           Case{"spheres", 70, 37, 2, Bvh8BuilderKind::Sbvh}),
+                         [](const auto& info) {
+                           return info.param.scene + (info.param.builder == Bvh8BuilderKind::Sbvh ? "_sbvh" : "");
+                         });
 
 }  // namespace
 }  // namespace passtrace

@@ -118,7 +118,8 @@ Agreement compareWithBruteForce(const Structure& s, const CpuAccelerator& accel,
 
 // Every CPU row with its default build, plus stack sizes 1 and 8 of the rows
 // that read --stack-size and the binned SAH build (with the thesis's and the
-// seed's termination) of the rows that read --kd-builder.
+// seed's termination) of the rows that read --kd-builder, and the SBVH build
+// (suffix _sbvh) of the rows that read --bvh8-builder.
 struct CpuCase {
   const Structure* structure;
   AccelBuildConfig config;
@@ -138,6 +139,11 @@ const std::vector<CpuCase>& cpuCases() {
           config.kdStackSize = k;
           cases.push_back({s, config, name + "_stack" + std::to_string(k)});
         }
+      if (std::find(reads.begin(), reads.end(), BuildParam::Bvh8Builder) != reads.end()) {
+        AccelBuildConfig config;
+        config.bvh8Builder = Bvh8BuilderKind::Sbvh;
+        cases.push_back({s, config, name + "_sbvh"});
+      }
       if (std::find(reads.begin(), reads.end(), BuildParam::KdBuilder) == reads.end()) continue;
       for (const KdTermination rule : {KdTermination::Thesis, KdTermination::Papay}) {
         AccelBuildConfig config;

@@ -29,7 +29,7 @@ bool contains(const Aabb& outer, const Aabb& inner) {
 }
 
 // Every triangle in exactly one leaf, every node's box around its subtree.
-void expectValidBinary(const BinaryBvh& bvh, std::span<const Triangle> tris) {
+void expectValidBinary(const SahBinaryBvh& bvh, std::span<const Triangle> tris) {
   ASSERT_EQ(bvh.prims.size(), tris.size());
   if (tris.empty()) return;
   std::vector<int> seen(tris.size(), 0), reached(bvh.nodes.size(), 0);
@@ -39,7 +39,7 @@ void expectValidBinary(const BinaryBvh& bvh, std::span<const Triangle> tris) {
     stack.pop_back();
     ASSERT_LT(n, bvh.nodes.size());
     ASSERT_EQ(reached[n]++, 0);
-    const BinaryBvhNode& node = bvh.nodes[n];
+    const SahBinaryBvhNode& node = bvh.nodes[n];
     if (node.leaf()) {
       for (uint32_t i = node.first; i < node.first + node.count; ++i) {
         ++seen[bvh.prims[i]];
