@@ -154,8 +154,8 @@ int main(int argc, char** argv) try {
     best = std::min(best, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   }
   for (unsigned id : primIds) hits += id != ~0u;
-  std::printf("{\"scene\": \"%s\", \"api\": \"%s\", \"width\": %d, \"threads\": %d, \"repeats\": %d, \"rays\": %zu, \"hits\": %zu, "
-              "\"min_ms\": %.3f, \"mrays_per_s\": %.3f}\n",
+  std::printf("{\"scene\": \"%s\", \"api\": \"%s\", \"width\": %d, \"threads\": %d, \"repeats\": %d, "
+              "\"rays\": %zu, \"hits\": %zu, \"min_ms\": %.3f, \"mrays_per_s\": %.3f}\n",
               sceneName.c_str(), packet ? (packetWidth == 16 ? "rtcIntersect16" : "rtcIntersect8") : "rtcIntersect1",
               width, threads, repeats, count, hits, best, double(count) / best / 1000.0);
   rtcReleaseScene(rtc);
