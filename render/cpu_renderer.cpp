@@ -115,8 +115,6 @@ uint64_t CpuRenderer::tracePackets(std::vector<PathState>& paths, std::vector<Hi
           accelerator_.tracePacket(std::span<const Ray>(rays, m), shadow != 0, std::span<Hit>(packetHits, m),
                                    std::span<RayStats>(packetStats, m));
           for (size_t k = 0; k < m; ++k) {
-            // The hit triangle's shading entry is loaded while the tile's other packets trace.
-            if (!shadow && packetHits[k].id < table_.size()) __builtin_prefetch(&table_[packetHits[k].id]);
             hits[index[k]] = packetHits[k];
             paths[index[k]].steps += packetStats[k].steps;
             paths[index[k]].triangleTests += packetStats[k].triangleTests;
