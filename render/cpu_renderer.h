@@ -1,9 +1,9 @@
 #pragma once
 // The CPU renderer (-r 1): the same rays, bounces and shading as the GPU
 // stream renderer, one wavefront per bounce over all pixels, traced through
-// any CpuAccelerator on all cores. Per-ray and packet tracers generate,
-// trace and shade each pixel (or tile) in one pass over the paths per bounce:
-// separate passes over the 100-byte path states stalled on cache misses.
+// any CpuAccelerator on all cores. Packet tracers generate, trace and shade
+// each tile in one pass over the paths per bounce: separate passes over the
+// 100-odd-byte path states stalled on cache misses.
 
 #include <vector>
 
@@ -28,7 +28,7 @@ class CpuRenderer {
  private:
   // What shading an element needs besides its hit and path: one per generation.
   struct Generation {
-    const CameraBasis* basis;  // the primary generation generates its rays; else null
+    const CameraBasis* basis;  // packet rows, primary generation: rays are generated per tile; else null
     int width;
     float epsilon;
     bool last;  // thesis: the last bounce (no further rays)
@@ -53,9 +53,8 @@ class CpuRenderer {
   // tile shaded right after; adds the stats to the paths; returns the rays traced.
   uint64_t tracePackets(std::vector<PathState>& paths, std::vector<Hit>& hits, const Generation& g,
                         int height) const;
-  // One bounce ray by ray through CpuAccelerator::intersect, each pixel
-  // generated (primary), traced and shaded in turn; returns the rays traced.
-  uint64_t traceRays(std::vector<PathState>& paths, std::vector<Hit>& hits, const Generation& g) const;
+  // One bounce ray by ray through CpuAccelerator::intersect; returns the rays traced.
+  uint64_t traceRays(std::vector<PathState>& paths, std::vector<Hit>& hits) const;
 
   const Scene& scene_;
   const CpuAccelerator& accelerator_;
