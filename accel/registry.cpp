@@ -183,7 +183,9 @@ std::vector<Structure> makeRows() {
   };
 #if PASSTRACE_HAVE_EMBREE
   rows.push_back({.name = "embree", .family = "embree",
-                  .description = "Intel Embree 3 (rtcIntersect1/rtcOccluded1), the baseline, through the CPU renderer",
+                  .description = "Intel Embree 3 (rtcIntersect16/rtcOccluded16 packets of primary and shadow "
+                                 "rays, 8 or 4 wide without AVX-512; rtcIntersect1 otherwise), the baseline, "
+                                 "through the CPU renderer",
                   .renderers = {Embree}, .number = std::nullopt, .numberedOn = {},
                   .cpu = makeEmbreeCpu,
                   .memory = {202, 0}, .reads = {}});

@@ -12,7 +12,7 @@ float aoDistance(const Scene& scene, const ShadingConfig& config) {
 }
 
 void shadeAo(const Scene& scene, float epsilon, int samples, float distance, uint32_t pixel, const Hit& hit,
-             PathState& path) {
+             PathState& path, std::span<const ShadingEntry> table) {
   const RayKind kind = path.kind;
   path.kind = RayKind::None;
   const bool found = hit.t < path.ray.tMax;
@@ -23,7 +23,8 @@ void shadeAo(const Scene& scene, float epsilon, int samples, float distance, uin
       return;
     }
     const glm::vec3 d = path.ray.direction;
-    const glm::vec3 geometric = glm::normalize(scene.triangles[hit.id].geometricNormal());
+    const glm::vec3 geometric =
+        table.empty() ? glm::normalize(scene.triangles[hit.id].geometricNormal()) : table[hit.id].normal;
     path.aoNormal = glm::dot(geometric, d) > 0.0f ? -geometric : geometric;
     origin = path.ray.origin + hit.t * d + epsilon * path.aoNormal;
     path.sample = 0;

@@ -1,11 +1,14 @@
 #pragma once
 // The CPU renderer (-r 1): the same rays, bounces and shading as the GPU
 // stream renderer, one wavefront per bounce over all pixels, traced through
-// any CpuAccelerator on all cores.
+// any CpuAccelerator on all cores. Packet tracers generate, trace and shade
+// each tile in one pass over the paths per bounce: separate passes over the
+// 100-odd-byte path states stalled on cache misses.
 
 #include <vector>
 
 #include "accel/cpu_accelerator.h"
+#include "render/camera.h"
 #include "render/frame_result.h"
 #include "render/shading.h"
 #include "scenes/scene.h"
@@ -14,13 +17,27 @@ namespace passtrace {
 
 class CpuRenderer {
  public:
-  // `scene` and `accelerator` must outlive the renderer. threads = 0: all cores.
+  // `scene` and `accelerator` must outlive the renderer, and the scene's
+  // triangles must not change while it lives (its shading table is built from
+  // them here). threads = 0: all cores.
   CpuRenderer(const Scene& scene, const CpuAccelerator& accelerator, unsigned threads = 0,
               ShadingConfig shading = {});
 
   FrameResult render(const CameraSpec& camera, int width, int height, int bounces, bool captureHits);
 
  private:
+  // What shading an element needs besides its hit and path: one per generation.
+  struct Generation {
+    const CameraBasis* basis;  // packet rows, primary generation: rays are generated per tile; else null
+    int width;
+    float epsilon;
+    bool last;  // thesis: the last bounce (no further rays)
+    int bounces;
+    float aoLength;
+    std::vector<WhittedStack>* stacks;
+  };
+  void shade(const Generation& g, size_t i, const Hit& hit, PathState& path) const;
+
   // The batch path's per-element arrays, kept for all generations of a frame.
   struct BatchScratch {
     std::vector<Ray> rays;
@@ -32,14 +49,18 @@ class CpuRenderer {
                            FrameStats& frame, BatchScratch& scratch) const;
 
   // One bounce through CpuAccelerator::tracePacket, 8x4 pixel tiles built
-  // from the paths' rays; adds the stats to the paths; returns the rays traced.
-  uint64_t tracePackets(std::vector<PathState>& paths, std::vector<Hit>& hits, bool primary, int width,
+  // from the paths' rays (generated here in the primary generation), each
+  // tile shaded right after; adds the stats to the paths; returns the rays traced.
+  uint64_t tracePackets(std::vector<PathState>& paths, std::vector<Hit>& hits, const Generation& g,
                         int height) const;
+  // One bounce ray by ray through CpuAccelerator::intersect; returns the rays traced.
+  uint64_t traceRays(std::vector<PathState>& paths, std::vector<Hit>& hits) const;
 
   const Scene& scene_;
   const CpuAccelerator& accelerator_;
   unsigned threads_;
   ShadingConfig shading_;
+  std::vector<ShadingEntry> table_;  // makeShadingTable(scene_)
 };
 
 }  // namespace passtrace

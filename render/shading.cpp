@@ -7,7 +7,8 @@ float secondaryRayEpsilon(const Scene& scene) {
   return box.empty() ? 1e-4f : 1e-4f * glm::length(box.extent());
 }
 
-void shadeElement(const Scene& scene, float epsilon, bool lastBounce, const Hit& hit, PathState& path) {
+void shadeElement(const Scene& scene, float epsilon, bool lastBounce, const Hit& hit, PathState& path,
+                  std::span<const ShadingEntry> table) {
   const RayKind kind = path.kind;
   path.kind = RayKind::None;
   const bool found = hit.t < path.ray.tMax;
@@ -20,11 +21,13 @@ void shadeElement(const Scene& scene, float epsilon, bool lastBounce, const Hit&
     path.color += path.throughput * scene.background;
     return;
   }
-  const Triangle& tri = scene.triangles[hit.id];
-  const Material& material = scene.materials[scene.materialIds[hit.id]];
+  const ShadingEntry entry = table.empty()
+      ? ShadingEntry{glm::normalize(scene.triangles[hit.id].geometricNormal()), scene.materialIds[hit.id]}
+      : table[hit.id];
+  const Material& material = scene.materials[entry.material];
   const glm::vec3 d = path.ray.direction;
   const glm::vec3 position = path.ray.origin + hit.t * d;
-  glm::vec3 geometric = glm::normalize(tri.geometricNormal());
+  glm::vec3 geometric = entry.normal;
   glm::vec3 n = geometric;
   if (scene.hasVertexNormals()) {
     const auto& vn = scene.vertexNormals[hit.id];

@@ -4,10 +4,12 @@
 // this for every element after each trace.
 
 #include <array>
+#include <span>
 
 #include "accel/geometry/geometry.h"
 #include "accel/ray_stream_layout.h"
 #include "render/shading_config.h"
+#include "render/shading_table.h"
 #include "scenes/scene.h"
 
 namespace passtrace {
@@ -44,7 +46,10 @@ struct WhittedStack {
 float secondaryRayEpsilon(const Scene& scene);
 
 // Resolves `hit` for the element's ray and sets its next ray (kind None if none).
-void shadeElement(const Scene& scene, float epsilon, bool lastBounce, const Hit& hit, PathState& path);
+// `table` (makeShadingTable(scene)), when given, is read instead of the hit
+// triangle and its material id: the same values, one load. Also for the two below.
+void shadeElement(const Scene& scene, float epsilon, bool lastBounce, const Hit& hit, PathState& path,
+                  std::span<const ShadingEntry> table = {});
 
 // --shading whitted, as kernels_glsl/shade_whitted.frag. Order per nearest hit:
 // ambient; the pending rays pushed (refraction, then reflection on top);
@@ -53,7 +58,7 @@ void shadeElement(const Scene& scene, float epsilon, bool lastBounce, const Hit&
 // pushed last light first; when the element has no ray, the top pending ray
 // is popped. Children are spawned while depth < maxDepth (-b).
 void shadeWhitted(const Scene& scene, float epsilon, int maxDepth, const Hit& hit, PathState& path,
-                  WhittedStack& stack);
+                  WhittedStack& stack, std::span<const ShadingEntry> table = {});
 
 // Whitted's lights: Scene::lights (the first kWhittedMaxLights), or Scene::light alone.
 int whittedLightCount(const Scene& scene);
@@ -63,7 +68,7 @@ const PointLight& whittedLight(const Scene& scene, int k);
 // rays (any-hit, tMax = distance) about its normal; each unoccluded one adds
 // 1/samples to the grey; a primary miss shows the background.
 void shadeAo(const Scene& scene, float epsilon, int samples, float distance, uint32_t pixel, const Hit& hit,
-             PathState& path);
+             PathState& path, std::span<const ShadingEntry> table = {});
 
 // The AO rays' length: config.aoDistance, or kAoDistanceFraction of the scene's box diagonal.
 float aoDistance(const Scene& scene, const ShadingConfig& config);

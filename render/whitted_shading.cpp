@@ -39,7 +39,7 @@ const PointLight& whittedLight(const Scene& scene, int k) {
 }
 
 void shadeWhitted(const Scene& scene, float epsilon, int maxDepth, const Hit& hit, PathState& path,
-                  WhittedStack& stack) {
+                  WhittedStack& stack, std::span<const ShadingEntry> table) {
   const RayKind kind = path.kind;
   path.kind = RayKind::None;
   const bool found = hit.t < path.ray.tMax;
@@ -48,11 +48,13 @@ void shadeWhitted(const Scene& scene, float epsilon, int maxDepth, const Hit& hi
   } else if (kind == RayKind::Nearest && !found) {
     path.color += path.throughput * scene.background;
   } else if (kind == RayKind::Nearest) {
-    const Triangle& tri = scene.triangles[hit.id];
-    const Material& m = scene.materials[scene.materialIds[hit.id]];
+    const ShadingEntry entry = table.empty()
+        ? ShadingEntry{glm::normalize(scene.triangles[hit.id].geometricNormal()), scene.materialIds[hit.id]}
+        : table[hit.id];
+    const Material& m = scene.materials[entry.material];
     const glm::vec3 d = path.ray.direction;
     const glm::vec3 position = path.ray.origin + hit.t * d;
-    const glm::vec3 geometric = glm::normalize(tri.geometricNormal());
+    const glm::vec3 geometric = entry.normal;
     glm::vec3 n = geometric;
     if (scene.hasVertexNormals()) {
       const auto& vn = scene.vertexNormals[hit.id];

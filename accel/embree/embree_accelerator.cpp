@@ -60,6 +60,26 @@ struct ErrorSink {
   }
 };
 
+// Embree's packet types and calls by width, so that one loop serves all three.
+template <int K> struct EmbreePacket;
+template <> struct EmbreePacket<4> {
+  using RayHit = RTCRayHit4;
+  static void intersect(const int* v, RTCScene s, RTCIntersectContext* c, RTCRayHit4* r) { rtcIntersect4(v, s, c, r); }
+  static void occluded(const int* v, RTCScene s, RTCIntersectContext* c, RTCRay4* r) { rtcOccluded4(v, s, c, r); }
+};
+template <> struct EmbreePacket<8> {
+  using RayHit = RTCRayHit8;
+  static void intersect(const int* v, RTCScene s, RTCIntersectContext* c, RTCRayHit8* r) { rtcIntersect8(v, s, c, r); }
+  static void occluded(const int* v, RTCScene s, RTCIntersectContext* c, RTCRay8* r) { rtcOccluded8(v, s, c, r); }
+};
+template <> struct EmbreePacket<16> {
+  using RayHit = RTCRayHit16;
+  static void intersect(const int* v, RTCScene s, RTCIntersectContext* c, RTCRayHit16* r) {
+    rtcIntersect16(v, s, c, r);
+  }
+  static void occluded(const int* v, RTCScene s, RTCIntersectContext* c, RTCRay16* r) { rtcOccluded16(v, s, c, r); }
+};
+
 class EmbreeAccelerator final : public CpuAccelerator {
 public:
   explicit EmbreeAccelerator(std::span<const Triangle> tris) : errors_(std::make_unique<ErrorSink>()) {
@@ -117,6 +137,7 @@ public:
 
     rtcCommitScene(scene_.get());
     errors_->throwIfError("scene build");
+    packetWidth_ = nativePacketWidth(device_.get());
 
     stats_.name = "embree";
     stats_.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -160,10 +181,90 @@ public:
     return Hit{std::min(rh.ray.tfar, tfar), rh.hit.u, rh.hit.v, rh.hit.primID};
   }
 
+  int packetSize() const override { return packetWidth_; }
+
+  // Packets of up to packetWidth_ rays through rtcIntersect16/8/4 and
+  // rtcOccluded16/8/4, one lane per ray; lanes past the packet's end and rays
+  // with nothing to hit (tMax <= 0 or NaN) are masked off. Same results as
+  // intersect() ray by ray (tests/unit/embree_packet_test.cpp).
+  void tracePacket(std::span<const Ray> rays, bool anyHit, std::span<Hit> hits,
+                   std::span<RayStats> /*stats: Embree counts nothing*/) const override {
+    for (size_t first = 0; first < rays.size(); first += size_t(packetWidth_)) {
+      const size_t m = std::min(size_t(packetWidth_), rays.size() - first);
+      switch (packetWidth_) {
+        case 16: tracePacketK<16>(rays.subspan(first, m), anyHit, hits.subspan(first, m)); break;
+        case 8: tracePacketK<8>(rays.subspan(first, m), anyHit, hits.subspan(first, m)); break;
+        default: tracePacketK<4>(rays.subspan(first, m), anyHit, hits.subspan(first, m)); break;
+      }
+    }
+  }
+
   std::string name() const override { return "embree"; }
   AccelStats stats() const override { return stats_; }
 
 private:
+  template <int K>
+  void tracePacketK(std::span<const Ray> rays, bool anyHit, std::span<Hit> hits) const {
+    using P = EmbreePacket<K>;
+    alignas(64) int valid[K];
+    alignas(64) typename P::RayHit rh;
+    auto& r = rh.ray;
+    bool any = false;
+    for (int k = 0; k < K; ++k) {
+      // Lanes past the end trace nothing; their fields still get finite values.
+      const bool in = size_t(k) < rays.size();
+      const Ray& ray = rays[in ? size_t(k) : 0];
+      const bool live = in && ray.tMax > 0.0f;
+      valid[k] = live ? -1 : 0;
+      any = any || live;
+      r.org_x[k] = ray.origin.x;
+      r.org_y[k] = ray.origin.y;
+      r.org_z[k] = ray.origin.z;
+      r.tnear[k] = 0.0f;
+      r.dir_x[k] = ray.direction.x;
+      r.dir_y[k] = ray.direction.y;
+      r.dir_z[k] = ray.direction.z;
+      r.time[k] = 0.0f;
+      r.tfar[k] = !live ? 0.0f : std::isinf(ray.tMax) ? ray.tMax : std::nextafter(ray.tMax, 0.0f);
+      r.mask[k] = static_cast<unsigned>(-1);
+      r.id[k] = 0;
+      r.flags[k] = 0;
+      rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.primID[k] = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+    }
+    if (any) {
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      if (anyHit)
+        P::occluded(valid, scene_.get(), &context, &r);
+      else
+        P::intersect(valid, scene_.get(), &context, &rh);
+    }
+    for (size_t k = 0; k < rays.size(); ++k) {
+      const Hit none{rays[k].tMax};
+      if (!valid[k]) {
+        hits[k] = none;
+      } else if (anyHit) {
+        hits[k] = r.tfar[k] == -std::numeric_limits<float>::infinity() ? Hit{0.0f, 0.0f, 0.0f, 0u} : none;
+      } else if (rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) {
+        hits[k] = none;
+      } else {
+        const float tfar = std::isinf(rays[k].tMax) ? rays[k].tMax : std::nextafter(rays[k].tMax, 0.0f);
+        hits[k] = Hit{std::min(r.tfar[k], tfar), rh.hit.u[k], rh.hit.v[k], rh.hit.primID[k]};
+      }
+    }
+  }
+
+  // The widest packet Embree's build runs natively on this CPU (16 with
+  // AVX-512, 8 with AVX2, else 4); narrower ones are emulated by Embree.
+  static int nativePacketWidth(RTCDevice device) {
+    if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED)) return 16;
+    if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED)) return 8;
+    if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED)) return 4;
+    return 0;
+  }
+
   static void setRay(RTCRay& r, const Ray& ray, float tfar) {
     r.org_x = ray.origin.x;
     r.org_y = ray.origin.y;
@@ -197,6 +298,7 @@ private:
   std::unique_ptr<RTCDeviceTy, DeviceRelease> device_;
   std::unique_ptr<RTCSceneTy, SceneRelease> scene_;
   AccelStats stats_;
+  int packetWidth_ = 0;  // 0: Embree was built without packet support
 };
 
 }  // namespace

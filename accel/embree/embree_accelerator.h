@@ -24,6 +24,10 @@
 //   t, u, v and id carry NO information about which triangle was hit or where
 //   (id 0 is merely a valid value). A ray that is not occluded returns
 //   Hit{t = tMax, id = kNoHit}, like brute force.
+// * Packets (packetSize() / tracePacket(), which the CPU renderer uses for
+//   primary and shadow tiles): rtcIntersect16 / rtcOccluded16, or 8 / 4 wide
+//   where Embree runs no wider natively; the same rules per lane, and the
+//   same bits as the single-ray calls (tests/unit/embree_packet_test.cpp).
 // * Embree's triangle test is not passtrace's Möller–Trumbore: on shared edges
 //   and exact ties the triangle chosen (or whether a grazing hit counts) may
 //   differ in the last bits; tests compare with a t-tie tolerance.
