@@ -179,6 +179,13 @@ std::vector<Structure> makeRows() {
        .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeBvh8PacketCpu,
        .memory = {211, 0}, .reads = {}},
+      // Issue 17 item 3: kk-bvh's kernel over eight child orders (Hachisuka's MTBVH, one order per octant).
+      {.name = "bvh-octant", .family = "bvh",
+       .description = "Kay/Kajiya BVH as eight escape-index sequences, children near-first for each ray octant; "
+                      "on the CPU the kernel's algorithm",
+       .renderers = {Cpu, Gpu}, .number = std::nullopt, .numberedOn = {},
+       .cpu = makeOctantBvhCpu, .stream = makeOctantBvhStream, .mirror = makeOctantBvhCpu,
+       .memory = {0, 0}, .reads = {}},
   };
 #if PASSTRACE_HAVE_EMBREE
   rows.push_back({.name = "embree", .family = "embree",
