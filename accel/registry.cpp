@@ -179,13 +179,14 @@ std::vector<Structure> makeRows() {
        .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeBvh8PacketCpu,
        .memory = {211, 0}, .reads = {}},
-      // Issue 17 item 3: kk-bvh's kernel over eight child orders (Hachisuka's MTBVH, one order per octant).
+      // Issue 17 item 3: kk-bvh's kernel over eight child orders (Hachisuka's MTBVH, one order per octant) of
+      // bvh-stack's tree.
       {.name = "bvh-octant", .family = "bvh",
-       .description = "Kay/Kajiya BVH as eight escape-index sequences, children near-first for each ray octant; "
-                      "on the CPU the kernel's algorithm",
+       .description = "binary BVH (--bvh-builder) as eight escape-index sequences, children near-first for each "
+                      "ray octant (no per-ray stack); on the CPU the kernel's algorithm",
        .renderers = {Cpu, Gpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeOctantBvhCpu, .stream = makeOctantBvhStream, .mirror = makeOctantBvhCpu,
-       .memory = {864, 1961}, .reads = {}},  // eight copies of the sequence (kk-bvh: 230 / 255)
+       .memory = {864, 1961}, .reads = {P::BvhBuilder}},  // eight copies of the sequence (kk-bvh: 230 / 255)
   };
 #if PASSTRACE_HAVE_EMBREE
   rows.push_back({.name = "embree", .family = "embree",

@@ -7,6 +7,7 @@
 #include "accel/bvh/gpu_bvh_traversal.h"
 #include "accel/bvh/gpu_octant_bvh_traversal.h"
 #include "accel/bvh/octant_sequences.h"
+#include "accel/bvh_stack/bvh_stack_structure.h"
 
 namespace passtrace {
 namespace {
@@ -92,10 +93,14 @@ struct OctantBuild {
 
 OctantBuild buildOctantSequences(std::span<const Triangle> tris, const AccelBuildConfig& config) {
   const auto start = std::chrono::steady_clock::now();
-  const Bvh bvh = buildKayKajiya(tris, config.kayKajiya);  // the coin-flip order is replaced per octant
+  const BinaryBvh binary = buildBvhStackTree(tris, config.bvhBuilder);  // bvh-stack's tree
+  const Bvh bvh = bvhFromBinaryBvh(binary, tris);
   OctantBuild build{flattenOctantSequences(bvh, tris), bvhStats("bvh-octant", bvh)};
   build.stats.buildMs = millisecondsSince(start);
   build.stats.floatsPerTriangle = kOctants * build.sequences.sequences[0].floatsPerTriangle();
+  const BvhStackConfig constants;
+  build.stats.sahCost = binaryBvhSahCost(binary, constants.traversalCost, constants.intersectionCost);
+  build.stats.structureBytes = kOctants * build.sequences.sequences[0].texels.size() * sizeof(glm::vec4);
   return build;
 }
 

@@ -19,6 +19,7 @@
 
 #include "accel/bvh/bvh.h"
 #include "accel/bvh/escape_sequence.h"
+#include "accel/bvh_stack/binary_bvh.h"
 #include "accel/geometry/geometry.h"
 
 namespace passtrace {
@@ -34,6 +35,11 @@ inline uint32_t rayOctant(const glm::vec3& direction) {
 struct OctantSequences {
   std::array<EscapeSequence, kOctants> sequences;  // by rayOctant
 };
+
+// A binary BVH of the stack-BVH builders (accel/bvh_stack/) as a Bvh: a leaf of
+// k > 1 references becomes an internal node over k one-triangle leaves (its
+// box, then its triangles in the sequence), a leaf of one reference a leaf.
+Bvh bvhFromBinaryBvh(const BinaryBvh& binary, std::span<const Triangle> tris);
 
 // Children of each internal node sorted by their box centres projected on the
 // octant's diagonal (+-1, +-1, +-1), nearest first; ties keep stored order.
