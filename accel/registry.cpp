@@ -186,7 +186,7 @@ std::vector<Structure> makeRows() {
                       "ray octant (no per-ray stack); on the CPU the kernel's algorithm",
        .renderers = {Cpu, Gpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeOctantBvhCpu, .stream = makeOctantBvhStream, .mirror = makeOctantBvhCpu,
-       .memory = {864, 1961}, .reads = {P::BvhBuilder}},  // eight copies of the sequence (kk-bvh: 230 / 255)
+       .memory = {777, 1688}, .reads = {P::BvhBuilder}},  // eight sequences (kk-bvh measured 224 / 247 alongside)
   };
 #if PASSTRACE_HAVE_EMBREE
   rows.push_back({.name = "embree", .family = "embree",
