@@ -9,7 +9,8 @@ namespace {
 std::vector<glm::vec4> concatenate(const OctantSequences& sequences) {
   std::vector<glm::vec4> texels;
   texels.reserve(kOctants * sequences.sequences[0].texels.size());
-  for (const EscapeSequence& seq : sequences.sequences) texels.insert(texels.end(), seq.texels.begin(), seq.texels.end());
+  for (const EscapeSequence& seq : sequences.sequences)
+    texels.insert(texels.end(), seq.texels.begin(), seq.texels.end());
   return texels;
 }
 

@@ -4,18 +4,6 @@
 
 namespace passtrace {
 
-namespace {
-
-Aabb triangleBox(const Triangle& tri) {
-  Aabb box;
-  box.extend(tri.v0);
-  box.extend(tri.v1);
-  box.extend(tri.v2);
-  return box;
-}
-
-}  // namespace
-
 Bvh bvhFromBinaryBvh(const BinaryBvh& binary, std::span<const Triangle> tris) {
   Bvh bvh;
   if (binary.empty()) return bvh;
@@ -24,7 +12,7 @@ Bvh bvhFromBinaryBvh(const BinaryBvh& binary, std::span<const Triangle> tris) {
     return static_cast<uint32_t>(bvh.nodes.size() - 1);
   };
   const auto addLeaf = [&](uint32_t triangle) {
-    const uint32_t index = addNode(triangleBox(tris[triangle]));
+    const uint32_t index = addNode(tris[triangle].bounds());
     bvh.nodes[index].triangle = triangle;
     return index;
   };

@@ -35,15 +35,24 @@ void main() {
 
   uint index = unpackIndex(state.x);
   float steps = state.y, tests = state.z;
-  for (int i = 0; i < uLoopLimit && index < uSequenceSize; ++i) {
+  int budget = uLoopLimit;
+  while (budget > 0 && index < uSequenceSize) {
+    // Boxes until a triangle: llvmpipe runs both sides of a divergent branch, so
+    // the triangle test stays out of this loop and runs once per triangle below.
     vec4 first = fetchTexel(uSequences, base + index);
-    vec4 second = fetchTexel(uSequences, base + index + 1u);
-    steps += 1.0;
-    if (first.w >= 0.0) {
+    while (budget > 0 && index < uSequenceSize && first.w >= 0.0) {
+      vec4 second = fetchTexel(uSequences, base + index + 1u);
+      steps += 1.0;
+      budget -= 1;
       bool enter = intersectsBox(origin.xyz, invDir, first.xyz, second.xyz, hit.x);
       index = enter ? index + 2u : unpackIndex(first.w);
-    } else {
+      if (index < uSequenceSize) first = fetchTexel(uSequences, base + index);
+    }
+    if (budget > 0 && index < uSequenceSize) {
+      vec4 second = fetchTexel(uSequences, base + index + 1u);
       vec4 third = fetchTexel(uSequences, base + index + 2u);
+      steps += 1.0;
+      budget -= 1;
       tests += 1.0;
       bool found = intersectTriangle(origin.xyz, direction.xyz, first.xyz, second.xyz, third.xyz, second.w, hit);
       index = (found && anyHit) ? uSequenceSize : index + 3u;
