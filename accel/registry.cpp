@@ -180,6 +180,14 @@ std::vector<Structure> makeRows() {
        .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeBvh8PacketCpu,
        .memory = {211, 0}, .reads = {P::Bvh8Builder}},
+      // Issue 17 item 3: kk-bvh's kernel over eight child orders (Hachisuka's MTBVH, one order per octant) of
+      // bvh-stack's tree.
+      {.name = "bvh-octant", .family = "bvh",
+       .description = "binary BVH (--bvh-builder) as eight escape-index sequences, children near-first for each "
+                      "ray octant (no per-ray stack); on the CPU the kernel's algorithm",
+       .renderers = {Cpu, Gpu}, .number = std::nullopt, .numberedOn = {},
+       .cpu = makeOctantBvhCpu, .stream = makeOctantBvhStream, .mirror = makeOctantBvhCpu,
+       .memory = {777, 1688}, .reads = {P::BvhBuilder}},  // eight sequences (kk-bvh measured 224 / 247 alongside)
   };
 #if PASSTRACE_HAVE_EMBREE
   rows.push_back({.name = "embree", .family = "embree",

@@ -128,8 +128,8 @@ int parseOptions(int argc, char** argv, Options& o, std::string_view helpFooter)
                  "or median (always the middle of the cell)")
       ->check(CLI::IsMember({"mean", "median"}))->capture_default_str();
   app.add_option("--bvh-builder", o.bvhBuilder,
-                 "bvh-stack: binned SAH (sah), split BVH with spatial splits (sbvh, Stich et al. 2009) or the "
-                 "middle of the centroid box's largest axis (middle)")
+                 "bvh-stack, bvh-octant: binned SAH (sah), split BVH with spatial splits (sbvh, Stich et al. 2009) "
+                 "or the middle of the centroid box's largest axis (middle)")
       ->check(CLI::IsMember({"sah", "sbvh", "middle"}))->capture_default_str();
   app.add_option("--bvh8-builder", o.bvh8Builder,
                  "bvh8, bvh8-packet: the binary tree collapsed to 8 wide, binned SAH on all cores (binned) or split "

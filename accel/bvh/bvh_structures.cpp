@@ -5,6 +5,9 @@
 #include "accel/bvh/bvh_traversal.h"
 #include "accel/bvh/goldsmith_salmon_builder.h"
 #include "accel/bvh/gpu_bvh_traversal.h"
+#include "accel/bvh/gpu_octant_bvh_traversal.h"
+#include "accel/bvh/octant_sequences.h"
+#include "accel/bvh_stack/bvh_stack_structure.h"
 
 namespace passtrace {
 namespace {
@@ -66,6 +69,41 @@ std::unique_ptr<CpuAccelerator> recursive(const std::string& name, std::span<con
   return makeRecursiveBvhAccelerator(tris, std::move(bvh), std::move(stats), config.triangleTest);
 }
 
+// The octant-ordered sequences, each ray walking its own octant's as the GPU does.
+class OctantSequenceAccelerator final : public CpuAccelerator {
+public:
+  OctantSequenceAccelerator(OctantSequences sequences, AccelStats stats, TriangleTest test)
+      : sequences_(std::move(sequences)), stats_(std::move(stats)), test_(test) {}
+  Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
+    return traverseEscapeSequence(sequences_.sequences[rayOctant(ray.direction)], ray, anyHit, stats, test_);
+  }
+  std::string name() const override { return stats_.name; }
+  AccelStats stats() const override { return stats_; }
+
+private:
+  OctantSequences sequences_;
+  AccelStats stats_;
+  TriangleTest test_;
+};
+
+struct OctantBuild {
+  OctantSequences sequences;
+  AccelStats stats;
+};
+
+OctantBuild buildOctantSequences(std::span<const Triangle> tris, const AccelBuildConfig& config) {
+  const auto start = std::chrono::steady_clock::now();
+  const BinaryBvh binary = buildBvhStackTree(tris, config.bvhBuilder);  // bvh-stack's tree
+  const Bvh bvh = bvhFromBinaryBvh(binary, tris);
+  OctantBuild build{flattenOctantSequences(bvh, tris), bvhStats("bvh-octant", bvh)};
+  build.stats.buildMs = millisecondsSince(start);
+  build.stats.floatsPerTriangle = kOctants * build.sequences.sequences[0].floatsPerTriangle();
+  const BvhStackConfig constants;
+  build.stats.sahCost = binaryBvhSahCost(binary, constants.traversalCost, constants.intersectionCost);
+  build.stats.structureBytes = kOctants * build.sequences.sequences[0].texels.size() * sizeof(glm::vec4);
+  return build;
+}
+
 Bvh kkTree(std::span<const Triangle> tris, const AccelBuildConfig& config) { return buildKayKajiya(tris, config.kayKajiya); }
 Bvh gsTree(std::span<const Triangle> tris, const AccelBuildConfig& config) { return buildGoldsmithSalmon(tris, gsConfig(config)); }
 
@@ -124,6 +162,17 @@ std::unique_ptr<GpuTraversal> makeKkBvhStream(std::span<const Triangle> tris, co
 std::unique_ptr<GpuTraversal> makeGsBvhStream(std::span<const Triangle> tris, const GpuTraversalConfig& config) {
   SequenceBuild build = buildGsSequence(tris, config.build);
   return std::make_unique<GpuBvhTraversal>(build.sequence, std::move(build.stats), config);
+}
+
+std::unique_ptr<CpuAccelerator> makeOctantBvhCpu(std::span<const Triangle> tris, const AccelBuildConfig& config) {
+  OctantBuild build = buildOctantSequences(tris, config);
+  return std::make_unique<OctantSequenceAccelerator>(std::move(build.sequences), std::move(build.stats),
+                                                     config.triangleTest);
+}
+
+std::unique_ptr<GpuTraversal> makeOctantBvhStream(std::span<const Triangle> tris, const GpuTraversalConfig& config) {
+  OctantBuild build = buildOctantSequences(tris, config.build);
+  return std::make_unique<GpuOctantBvhTraversal>(build.sequences, std::move(build.stats), config);
 }
 
 }  // namespace passtrace

@@ -36,6 +36,9 @@ std::unique_ptr<CpuAccelerator> makeKkBvhRecursiveCpu(std::span<const Triangle> 
 std::unique_ptr<CpuAccelerator> makeGsBvhRecursiveCpu(std::span<const Triangle> tris, const AccelBuildConfig& config);
 std::unique_ptr<GpuTraversal> makeKkBvhStream(std::span<const Triangle> tris, const GpuTraversalConfig& config);
 std::unique_ptr<GpuTraversal> makeGsBvhStream(std::span<const Triangle> tris, const GpuTraversalConfig& config);
+// bvh-octant: bvh-stack's tree (--bvh-builder) as eight octant-ordered sequences (accel/bvh/octant_sequences.h).
+std::unique_ptr<CpuAccelerator> makeOctantBvhCpu(std::span<const Triangle> tris, const AccelBuildConfig& config);
+std::unique_ptr<GpuTraversal> makeOctantBvhStream(std::span<const Triangle> tris, const GpuTraversalConfig& config);
 
 // The two CPU forms for a tree built elsewhere (tests build trees by hand):
 // the sequence walk, and the recursive descent (holds a span of tris).

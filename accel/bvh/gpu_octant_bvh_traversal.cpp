@@ -1,0 +1,39 @@
+#include "accel/bvh/gpu_octant_bvh_traversal.h"
+
+#include "accel/ray_stream_layout.h"
+#include "stream/inout_stream.h"
+
+namespace passtrace {
+namespace {
+
+std::vector<glm::vec4> concatenate(const OctantSequences& sequences) {
+  std::vector<glm::vec4> texels;
+  texels.reserve(kOctants * sequences.sequences[0].texels.size());
+  for (const EscapeSequence& seq : sequences.sequences)
+    texels.insert(texels.end(), seq.texels.begin(), seq.texels.end());
+  return texels;
+}
+
+}  // namespace
+
+GpuOctantBvhTraversal::GpuOctantBvhTraversal(const OctantSequences& sequences, AccelStats stats,
+                                             const GpuTraversalConfig& config)
+    : sequenceSize_(sequences.sequences[0].texels.size()),
+      sequences_(concatenate(sequences), "the eight octant BVH sequences", config.maxPageTexels),
+      kernel_("bvh_octant_traverse", "bvh/bvh_octant_traverse.frag", StreamKernel::Depth::Test,
+              {streamPagesDefine({&sequences_}), triangleTestDefine(config.build.triangleTest)}),
+      stats_(std::move(stats)),
+      loopLimit_(config.loopLimit) {
+  kernel_.bindInput("uSequences", sequences_);
+  kernel_.set("uSequenceSize", static_cast<uint32_t>(sequenceSize_));
+  kernel_.set("uLoopLimit", loopLimit_);
+}
+
+uint64_t GpuOctantBvhTraversal::trace(InOutStream& rays, uint64_t active, const std::function<uint64_t()>& retire) {
+  bindRayInputs(kernel_, rays);
+  rays.setWriteSurfaces({kStateSurface, kHitSurface});
+  // Every step advances a ray at least 2 texels in its sequence, so no ray needs more passes.
+  return runTraversalPasses(kernel_, active, sequenceSize_ / (2 * uint64_t(loopLimit_)) + 2, retire);
+}
+
+}  // namespace passtrace

@@ -1,0 +1,27 @@
+#pragma once
+// The octant-ordered escape-index BVH on the GPU: the eight sequences of
+// accel/bvh/octant_sequences.h in one ConstInputStream, walked by
+// kernels_glsl/bvh/bvh_octant_traverse.frag.
+
+#include "accel/bvh/octant_sequences.h"
+#include "accel/gpu_traversal.h"
+#include "stream/const_input_stream.h"
+#include "stream/stream_kernel.h"
+
+namespace passtrace {
+
+class GpuOctantBvhTraversal final : public GpuTraversal {
+ public:
+  GpuOctantBvhTraversal(const OctantSequences& sequences, AccelStats stats, const GpuTraversalConfig& config);
+  uint64_t trace(InOutStream& rays, uint64_t active, const std::function<uint64_t()>& retire) override;
+  AccelStats stats() const override { return stats_; }
+
+ private:
+  uint64_t sequenceSize_;
+  ConstInputStream sequences_;
+  StreamKernel kernel_;
+  AccelStats stats_;
+  int loopLimit_;
+};
+
+}  // namespace passtrace
