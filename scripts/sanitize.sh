@@ -42,10 +42,10 @@ export ASAN_OPTIONS="$ASAN_OPTIONS:verify_asan_link_order=0"
 # of 60,000. Sanitized code runs about 5x slower.
 # PASSTRACE_SANITIZE_ALL=1 runs everything.
 # The slow label runs once (unsanitized) in CI; so do the agreement tests'
-# build variants (--stack-size 1/8, the binned kd builds, bvh-stack's sbvh and
+# build variants (--stack-size 1/8, the binned kd builds, the sbvh builds (bvh-stack, bvh-octant, bvh8) and
 # middle builds), whose code paths the default cases already take under the
 # sanitizers.
-select=(-LE slow -E "_stack[18]_|_binned|_sbvh_|_middle_")
+select=(-LE slow -E "_stack[18]_|_binned|_sbvh(_|$)|_middle_")
 if [ "${PASSTRACE_SANITIZE_ALL:-0}" = 1 ]; then select=(); fi
 LD_PRELOAD="$build/libkeep_libraries_loaded.so" PASSTRACE_WATERTIGHT_RAYS="${PASSTRACE_WATERTIGHT_RAYS:-12000}" \
   ctest --test-dir "$build" --output-on-failure -j2 "${select[@]}"
