@@ -1,5 +1,6 @@
 #include "tests/bvh_checks.h"
 
+#include <cmath>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -45,5 +46,31 @@ void expectValidBvh(const Bvh& bvh, std::span<const Triangle> tris) {
   for (size_t t = 0; t < triSeen.size(); ++t) EXPECT_EQ(triSeen[t], 1) << "triangle " << t;
 }
 
+
+bool contains(const Aabb& outer, const Aabb& inner) {
+  return glm::all(glm::lessThanEqual(outer.min, inner.min)) && glm::all(glm::greaterThanEqual(outer.max, inner.max));
+}
+
+bool containsPoint(const Aabb& box, const glm::vec3& p) {
+  const glm::vec3 slack = 1e-6f * (glm::abs(box.min) + glm::abs(box.max) + glm::abs(p));
+  return glm::all(glm::lessThanEqual(box.min - slack, p)) && glm::all(glm::lessThanEqual(p, box.max + slack));
+}
+
+bool finiteTriangle(const Triangle& t) {
+  for (const glm::vec3& v : {t.v0, t.v1, t.v2})
+    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) return false;
+  return true;
+}
+
+void expectTriangleInBoxes(const Triangle& tri, std::span<const Aabb> boxes, size_t index) {
+  for (int i = 0; i <= 8; ++i)
+    for (int j = 0; i + j <= 8; ++j) {
+      const float u = float(i) / 8.0f, v = float(j) / 8.0f;
+      const glm::vec3 p = tri.v0 + u * (tri.v1 - tri.v0) + v * (tri.v2 - tri.v0);
+      bool inside = false;
+      for (const Aabb& b : boxes) inside = inside || containsPoint(b, p);
+      EXPECT_TRUE(inside) << "triangle " << index << " point (" << u << ", " << v << ")";
+    }
+}
 
 }  // namespace passtrace::test

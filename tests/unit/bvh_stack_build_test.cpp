@@ -16,28 +16,17 @@
 #include "accel/bvh_stack/sbvh_builder.h"
 #include "accel/reference_lists.h"
 #include "tests/hit_checks.h"
+#include "tests/bvh_checks.h"
 #include "tests/test_meshes.h"
 
 namespace passtrace {
 namespace {
 
+using test::contains;
+using test::expectTriangleInBoxes;
+using test::finiteTriangle;
+
 constexpr BvhBuilderKind kBuilders[] = {BvhBuilderKind::Sah, BvhBuilderKind::Sbvh, BvhBuilderKind::Middle};
-
-bool contains(const Aabb& outer, const Aabb& inner) {
-  return glm::all(glm::lessThanEqual(outer.min, inner.min)) && glm::all(glm::greaterThanEqual(outer.max, inner.max));
-}
-
-bool containsPoint(const Aabb& box, const glm::vec3& p) {
-  // Sampled points are rounded: allow 1e-6 of the coordinates' size.
-  const glm::vec3 slack = 1e-6f * (glm::abs(box.min) + glm::abs(box.max) + glm::abs(p));
-  return glm::all(glm::lessThanEqual(box.min - slack, p)) && glm::all(glm::lessThanEqual(p, box.max + slack));
-}
-
-bool finiteTriangle(const Triangle& t) {
-  for (const glm::vec3& v : {t.v0, t.v1, t.v2})
-    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) return false;
-  return true;
-}
 
 using testmesh::longThinTriangles;
 
@@ -90,14 +79,7 @@ void expectValid(const BinaryBvh& bvh, std::span<const Triangle> tris, bool clip
       continue;
     }
     // Every sampled point of the triangle lies in one of its leaves' boxes.
-    for (int i = 0; i <= 8; ++i)
-      for (int j = 0; i + j <= 8; ++j) {
-        const float u = float(i) / 8.0f, v = float(j) / 8.0f;
-        const glm::vec3 p = tris[t].v0 + u * (tris[t].v1 - tris[t].v0) + v * (tris[t].v2 - tris[t].v0);
-        bool inside = false;
-        for (const Aabb& b : leafBoxes[t]) inside = inside || containsPoint(b, p);
-        EXPECT_TRUE(inside) << "triangle " << t << " point (" << u << ", " << v << ")";
-      }
+    expectTriangleInBoxes(tris[t], leafBoxes[t], t);
   }
 }
 

@@ -17,16 +17,15 @@
 #include "accel/wide_bvh/wide_bvh.h"
 #include "accel/wide_bvh/wide_bvh_structure.h"
 #include "accel/wide_bvh/wide_bvh_traversal.h"
+#include "tests/bvh_checks.h"
 #include "tests/test_meshes.h"
 
 namespace passtrace {
 namespace {
 
-using testmesh::NamedMesh;
+using test::contains;
 
-bool contains(const Aabb& outer, const Aabb& inner) {
-  return glm::all(glm::lessThanEqual(outer.min, inner.min)) && glm::all(glm::greaterThanEqual(outer.max, inner.max));
-}
+using testmesh::NamedMesh;
 
 // Every triangle in exactly one leaf, every node's box around its subtree.
 void expectValidBinary(const SahBinaryBvh& bvh, std::span<const Triangle> tris) {
