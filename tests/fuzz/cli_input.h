@@ -48,7 +48,7 @@ inline std::string optionsProblem(const Options& o) {
   if ((o.eye && !finite(*o.eye)) || (o.lookAt && !finite(*o.lookAt)) || (o.up && !finite(*o.up)))
     return "camera vector not finite";
   if (o.gsTries < 1 || o.kdMinElements < 1 || o.kdMaxDepth < 0 || o.kdMaxDepth > 64 || o.repeats < 1 ||
-      o.angles < 1 || o.loopLimit < 1 || o.swapChildren < 0 || o.swapChildren > 2)
+      o.angles < 1 || o.loopLimit < 0 || o.swapChildren < 0 || o.swapChildren > 2)
     return "a count is out of range";
   if (o.threads > kMaxThreads) return "thread count out of range";
   return {};
