@@ -104,6 +104,43 @@ void checkBinaryBody(const fs::path& file, std::ifstream& in, uint64_t start, ui
   if (at > fileBytes) throw SceneError(file, "binary body ends before its last element (truncated file?)");
 }
 
+// Walks an ASCII body line by line, one instance per line as Assimp reads it,
+// and requires each line to hold exactly its instance's values: Assimp sizes
+// a list from its count before reading the items, so "4000000000 1 2" would
+// make it allocate 32 GB. Scalars are not parsed here; Assimp reads them.
+void checkAsciiBody(const fs::path& file, std::ifstream& in, uint64_t start, std::size_t firstLine,
+                    const std::vector<Element>& elements) {
+  in.seekg(static_cast<std::streamoff>(start));
+  std::string text;
+  std::size_t number = firstLine - 1;
+  for (const Element& e : elements)
+    for (uint64_t i = 0; i < e.count; ++i) {
+      ++number;
+      const auto fail = [&](const std::string& reason) {
+        throw SceneError(file, number, e.name + " " + std::to_string(i) + ": " + reason);
+      };
+      if (!std::getline(in, text)) fail("the file ends before this " + e.name + " (truncated file?)");
+      if (!text.empty() && text.back() == '\r') text.pop_back();
+      const std::vector<std::string_view> values = words(text);
+      std::size_t at = 0;
+      for (const Property& p : e.layout) {
+        if (at >= values.size()) fail("too few values on the line");
+        if (p.itemBytes == 0) {
+          ++at;
+          continue;
+        }
+        const std::string_view token = values[at++];
+        uint64_t items = 0;
+        const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), items);
+        if (error != std::errc{} || end != token.data() + token.size())
+          fail("list length " + quoted(token) + " is not a whole number");
+        if (items > values.size() - at) fail("a list of " + std::to_string(items) + " values on a shorter line");
+        at += static_cast<std::size_t>(items);
+      }
+      if (at != values.size()) fail(std::to_string(values.size()) + " values on the line, " + std::to_string(at) + " expected");
+    }
+}
+
 }  // namespace
 
 PlyHeaderSummary checkPlyHeader(const fs::path& file) {
@@ -138,10 +175,16 @@ PlyHeaderSummary checkPlyHeader(const fs::path& file) {
       if (w.size() != 1 || (w[0] != "ply" && w[0] != "PLY")) fail("not a PLY file (the first line is not 'ply')");
       continue;
     }
+    // Assimp and this check could split a line with a NUL or other control
+    // character differently, and then disagree about the layout.
+    if (std::any_of(line.begin(), line.end(), [](char c) { return (c >= 0 && c < 0x20 && c != '\t') || c == 0x7f; }))
+      fail("control character in the PLY header");
     if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
     if (w[0] == "end_header") break;
     if (w[0] == "format") {
       if (w.size() != 3) fail("format needs a kind and a version");
+      // Which of two format lines Assimp obeys is not ours to guess.
+      if (haveFormat) fail("a second format line");
       if (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian")
         fail("unknown PLY format " + quoted(w[1]));
       summary.binary = w[1] != "ascii";
@@ -170,7 +213,8 @@ PlyHeaderSummary checkPlyHeader(const fs::path& file) {
       if (list) {
         property.itemBytes = kTypeSizes.at(w[3]);
         property.signedCount = w[2] == "char" || w[2] == "short" || w[2].starts_with("int");
-        if (property.bytes > 4) fail("list count type " + quoted(w[2]) + " is not an integer type");
+        if (property.bytes > 4 || w[2].starts_with("float"))
+          fail("list count type " + quoted(w[2]) + " is not an integer type");
       }
       e.layout.push_back(property);
       if (!list) e.scalarNames.emplace_back(w[2]);
@@ -200,10 +244,11 @@ PlyHeaderSummary checkPlyHeader(const fs::path& file) {
     if (e.name == "vertex") summary.vertices = e.count;
     if (e.name == "face" || e.name == "tristrips") summary.faces = plus(summary.faces, e.count);
   }
-  if (summary.binary) {
-    in.clear();
+  in.clear();
+  if (summary.binary)
     checkBinaryBody(file, in, offset, fileBytes, bigEndian, elements);
-  }
+  else
+    checkAsciiBody(file, in, offset, number + 1, elements);
   return summary;
 }
 

@@ -123,6 +123,10 @@ TEST(PlyLoaderErrors, ElementCountLargerThanTheBody) {
   expectError("count_too_large.ply", "element 'vertex' declares 4000000000 instances", 4);
 }
 
+TEST(PlyLoaderErrors, AsciiListLongerThanItsLine) {
+  expectError("ascii_list_too_long.ply", "face 0: a list of 4000000000 values on a shorter line", 14);
+}
+
 TEST(PlyLoaderErrors, NonFiniteVertices) {
   expectError("nan_vertex.ply", "mesh 0: vertex 1 is not finite");
   expectError("inf_vertex_binary.ply", "mesh 0: vertex 1 is not finite");

@@ -82,3 +82,6 @@ write("garbage.ply", "ply\nthis is not a header\n\x01\x02\x03\n")
 write("not_ply.ply", "solid cube\nendsolid cube\n")
 write("points_only.ply", ascii_ply(PYRAMID_VERTICES, []))
 write("bad_type.ply", ascii_ply(PYRAMID_VERTICES, PYRAMID_FACES).replace("property float y", "property real y"))
+# Assimp sizes a list from its length before reading the items.
+write("ascii_list_too_long.ply",
+      ascii_ply([(0, 0, 0), (1, 0, 0), (0, 1, 0)], [(0, 1, 2)]).replace("\n3 0 1 2\n", "\n4000000000 0 1 2\n"))
