@@ -54,6 +54,16 @@ std::vector<std::string_view> words(std::string_view line) {
   return out;
 }
 
+// Element and property names are words of letters, digits, '_', '-' and '.'
+// starting with a letter or '_': Assimp splits a line like "element 33vertex 4"
+// differently from the words here and then sizes arrays from the wrong token.
+bool isName(std::string_view token) {
+  const auto letter = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; };
+  return !token.empty() && letter(token[0]) && std::all_of(token.begin(), token.end(), [&](char c) {
+    return letter(c) || (c >= '0' && c <= '9') || c == '-' || c == '.';
+  });
+}
+
 std::string quoted(std::string_view token) {
   std::string out = "'";
   for (char c : token.substr(0, 40)) out += (c >= 0x20 && c < 0x7f) ? c : '?';
@@ -192,6 +202,7 @@ PlyHeaderSummary checkPlyHeader(const fs::path& file) {
       haveFormat = true;
     } else if (w[0] == "element") {
       if (w.size() != 3) fail("element needs a name and a count");
+      if (!isName(w[1])) fail("bad element name " + quoted(w[1]));
       Element e;
       e.name = std::string(w[1]);
       e.line = number;
@@ -207,6 +218,7 @@ PlyHeaderSummary checkPlyHeader(const fs::path& file) {
       const auto type = kTypeSizes.find(w[list ? 2 : 1]);
       if (type == kTypeSizes.end()) fail("unknown property type " + quoted(w[list ? 2 : 1]));
       if (list && kTypeSizes.find(w[3]) == kTypeSizes.end()) fail("unknown property type " + quoted(w[3]));
+      if (!isName(w.back())) fail("bad property name " + quoted(w.back()));
       ++e.properties;
       e.fixedBytes += type->second;
       Property property{type->second, 0, false};
