@@ -7,7 +7,11 @@
 #include "reference_lists.glsl"
 #include "grid/grid_traversal.glsl"
 
-layout(early_fragment_tests) in;
+// No early_fragment_tests: with them a fragment is counted by the occlusion
+// query before the shader runs, so the rays this kernel discards would be
+// counted as served and the schedule in accel/grid/gpu_grid_traversal.cpp
+// would never switch kernels (it did not on NVIDIA; llvmpipe counts after).
+// The depth test still culls finished rays: the shader writes no depth.
 
 uniform sampler2D uOrigin;
 uniform sampler2D uDirection;
