@@ -127,6 +127,8 @@ class ObjChecker {
       face();
     } else if (key == "t") {
       tag();
+    } else if (key == "vw") {
+      skinWeights();
     }
   }
 
@@ -153,7 +155,7 @@ class ObjChecker {
     for (std::size_t i = 1; i < tokens_.size(); ++i) real(tokens_[i]);
   }
 
-  void real(std::string_view token) {
+  double real(std::string_view token) {
     std::string_view digits = token;
     // from_chars rejects the leading '+' that OBJ writers may emit.
     if (digits.size() > 1 && digits[0] == '+' && digits[1] != '-' && digits[1] != '+') digits.remove_prefix(1);
@@ -163,6 +165,7 @@ class ObjChecker {
     if (error != std::errc{} || end != digits.data() + digits.size()) fail("bad number " + quoted(token));
     if (!std::isfinite(x)) fail("non-finite number " + quoted(token));
     if (std::fabs(x) > std::numeric_limits<float>::max()) fail("number out of range " + quoted(token));
+    return x;
   }
 
   void face() {
@@ -223,6 +226,22 @@ class ObjChecker {
     }
     if (!counts.empty()) fail("bad tag counts " + quoted(tokens_[2]));
     if (total > static_cast<long>(tokens_.size() - 3)) fail("tag declares more values than it has");
+  }
+
+  // tinyobjloader's skin-weight extension, "vw VERTEX JOINT WEIGHT ...":
+  // passtrace ignores the weights, but tinyobjloader converts each joint to
+  // int unchecked (undefined for 1e30), so joints must be ints.
+  void skinWeights() {
+    if (tokens_.size() < 2 || tokens_.size() % 2 != 0) fail("vw needs a vertex and joint/weight pairs");
+    int vertex = 0;
+    const std::string_view v = tokens_[1];
+    const auto [end, error] = std::from_chars(v.data(), v.data() + v.size(), vertex);
+    if (error != std::errc{} || end != v.data() + v.size()) fail("bad vw vertex " + quoted(v));
+    for (std::size_t i = 2; i < tokens_.size(); i += 2) {
+      const double joint = real(tokens_[i]);
+      if (joint < 0.0 || joint > double(std::numeric_limits<int>::max())) fail("bad vw joint " + quoted(tokens_[i]));
+      real(tokens_[i + 1]);
+    }
   }
 
   const fs::path& file_;

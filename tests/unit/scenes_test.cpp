@@ -232,6 +232,8 @@ TEST(ObjLoaderErrors, MoreLineErrors) {
       {"lone_f.obj", vertices + "f\n", ":4: face needs at least 3 vertices, got 0"},
       {"tag.obj", vertices + "t crease 100/0/0 1 2\nf 1 2 3\n", ":4: tag declares more values than it has"},
       {"nul.obj", vertices + std::string("f 1 2 3\0", 8) + "\n", ":4: NUL byte"},
+      {"vw_joint.obj", vertices + "vw 0 1e30 0.5\nf 1 2 3\n", ":4: bad vw joint '1e30'"},
+      {"vw_pairs.obj", vertices + "vw 0 1\nf 1 2 3\n", ":4: vw needs a vertex and joint/weight pairs"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);
