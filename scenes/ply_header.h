@@ -4,12 +4,14 @@
 // a 300-byte file makes it allocate gigabytes (or fail with a bare
 // std::bad_alloc), and it reads a property of an unknown type as garbage
 // without complaint. This check rejects both with "FILE:LINE: reason":
-// unknown formats and types, malformed lines, a header without end_header
+// unknown formats and types, a second format line, control characters,
+// names that are not words, malformed lines, a header without end_header
 // in its first 1 MiB, and element counts the rest of the file is too short to
-// hold (at least one character and a separator per property in an ASCII
-// file; in a binary one, every instance's bytes, lists included, walked
-// through the body so that a truncated file is named as such). After it,
-// what Assimp allocates is bounded by a small multiple of the file size.
+// hold. The body is walked too: in a binary file every instance's bytes,
+// lists included, so that a truncated file is named as such; in an ASCII
+// file every instance's line, which must hold exactly its values (Assimp
+// sizes a list from its length before reading it). After it, what Assimp
+// allocates is bounded by a small multiple of the file size.
 
 #include <cstdint>
 #include <filesystem>
