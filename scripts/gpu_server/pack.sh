@@ -13,10 +13,10 @@ root=$(cd "$(dirname "$0")/../.." && pwd)
 build=$root/build-gpu-server
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPASSTRACE_IMAGE_OUTPUT=OFF \
   -DCMAKE_DISABLE_FIND_PACKAGE_OSMesa=ON -DCMAKE_DISABLE_FIND_PACKAGE_embree=ON > /dev/null
-cmake --build "$build" -j"$(nproc)" --target passtrace passtrace_gl_tests > /dev/null
+cmake --build "$build" -j"$(nproc)" --target passtrace passtrace_gl_tests measure_fragment_vs_compute > /dev/null
 stage=$(mktemp -d); trap 'rm -rf "$stage"' EXIT
 mkdir -p "$stage/bin" "$stage/lib"
-cp "$build/passtrace" "$build/tests/passtrace_gl_tests" "$stage/bin/" && strip "$stage/bin/"*
+cp "$build/passtrace" "$build/tests/passtrace_gl_tests" "$build/tests/measure/measure_fragment_vs_compute" "$stage/bin/" && strip "$stage/bin/"*
 # The libraries the server lacks: all but the C/C++ runtime and the GL loaders (the driver's).
 ldd "$build/passtrace" | awk '$3 ~ /^\// {print $3}' |
   grep -Ev '/(libc|libm|libstdc\+\+|libgcc_s|libEGL|libGLdispatch|libGLX|libOpenGL)\.so' |
