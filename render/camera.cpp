@@ -19,13 +19,4 @@ CameraBasis makeCameraBasis(const CameraSpec& camera, int width, int height) {
                      std::tan(glm::radians(camera.fovDegrees) * 0.5f), width, height};
 }
 
-Ray primaryRay(const CameraBasis& b, int px, int py) {
-  const float w = float(b.width), h = float(b.height);
-  // Written as raygen.frag writes it, so both round alike.
-  const float sx = (2.0f * (float(px) + 0.5f) / w - 1.0f) * b.tanHalfFov * (w / h);
-  const float sy = (1.0f - 2.0f * (float(py) + 0.5f) / h) * b.tanHalfFov;
-  const glm::vec3 d = b.forward + sx * b.right + sy * b.up;
-  return Ray{b.eye, d / std::sqrt(glm::dot(d, d)), kInfinity};
-}
-
 }  // namespace passtrace

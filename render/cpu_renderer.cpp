@@ -4,12 +4,24 @@
 #include <atomic>
 #include <chrono>
 #include <limits>
+#include <mutex>
 
 #include "render/camera.h"
 #include "render/parallel_for.h"
 #include "render/shading.h"
 
 namespace passtrace {
+namespace {
+
+// Adds pixels' step and triangle-test sums to a frame's, and takes the larger maxima.
+void addPixelCounts(FrameStats& into, const FrameStats& counts) {
+  into.steps += counts.steps;
+  into.triangleTests += counts.triangleTests;
+  into.maxStepsPerRay = std::max(into.maxStepsPerRay, counts.maxStepsPerRay);
+  into.maxTriangleTestsPerRay = std::max(into.maxTriangleTestsPerRay, counts.maxTriangleTestsPerRay);
+}
+
+}  // namespace
 
 CpuRenderer::CpuRenderer(const Scene& scene, const CpuAccelerator& accelerator, unsigned threads,
                          ShadingConfig shading)
@@ -18,6 +30,12 @@ CpuRenderer::CpuRenderer(const Scene& scene, const CpuAccelerator& accelerator, 
       threads_(threads ? threads : std::thread::hardware_concurrency()),
       shading_(shading),
       table_(makeShadingTable(scene, threads_)) {}
+
+void CpuRenderer::prefetchShading(const Hit& hit) const {
+  if (hit.id >= table_.size()) return;
+  __builtin_prefetch(&table_[hit.id]);
+  if (scene_.hasVertexNormals()) __builtin_prefetch(&scene_.vertexNormals[hit.id]);
+}
 
 void CpuRenderer::shade(const Generation& g, size_t i, const Hit& hit, PathState& path) const {
   if (shading_.mode == ShadingMode::Thesis)
@@ -71,8 +89,13 @@ uint64_t CpuRenderer::traceGeneration(std::vector<PathState>& paths, std::vector
 // the shadow rays as packets of up to 64 (a common end at the light; against
 // 16 and 32 per packet, 64 took the least CPU time on Robots); mirror rays one
 // at a time, where packets would mostly carry dead lanes.
+//
+// A frame of primary rays only (`pixels` given) ends every path in its tile,
+// so the tile's path states live on the stack and only each pixel's colour and
+// counts are written: streaming the 112-byte path state of every pixel through
+// memory and back took a third of an Embree bunny frame.
 uint64_t CpuRenderer::tracePackets(std::vector<PathState>& paths, std::vector<Hit>& hits, const Generation& g,
-                                   int height) const {
+                                   int height, FrameResult* pixels) const {
   const bool primary = g.basis != nullptr;
   const int width = g.width;
   constexpr size_t kTileW = 8, kTile = kTileW * 8, kClosestPacket = 32;
@@ -81,53 +104,85 @@ uint64_t CpuRenderer::tracePackets(std::vector<PathState>& paths, std::vector<Hi
                                std::min<size_t>(size_t(accelerator_.packetSize()), kTile)};
   const size_t tilesX = (size_t(width) + kTileW - 1) / kTileW, tilesY = (size_t(height) + kTileH - 1) / kTileH;
   std::atomic<uint64_t> active{0};
+  std::mutex statsLock;
   parallelFor(tilesX * tilesY, 256 / kTile, threads_, [&](size_t begin, size_t end) {
     uint64_t count = 0;
+    FrameStats counts;  // with `pixels`: this work item's share of the frame's sums and maxima
+    PathState tilePaths[kTile];
+    Hit tileHits[kTile];
+    Ray rays[kTile];
+    Hit packetHits[kTile];
+    RayStats packetStats[kTile];
     for (size_t tile = begin; tile < end; ++tile) {
-      size_t members[2][kTile];
-      size_t sizes[2] = {0, 0};
+      size_t pixel[kTile];  // the tile's pixels, row by row
+      uint8_t members[2][kTile];
+      size_t n = 0, sizes[2] = {0, 0};
+      const auto pathOf = [&](size_t j) -> PathState& { return pixels ? tilePaths[j] : paths[pixel[j]]; };
       const size_t x0 = (tile % tilesX) * kTileW, y0 = (tile / tilesX) * kTileH;
-      for (size_t y = y0; y < std::min(y0 + kTileH, size_t(height)); ++y)
+      float screenX[kTileW] = {}, dirX[kTileW], dirY[kTileW], dirZ[kTileW];
+      if (primary)
+        for (size_t x = x0; x < std::min(x0 + kTileW, size_t(width)); ++x)
+          screenX[x - x0] = cameraScreenX(*g.basis, int(x));
+      for (size_t y = y0; y < std::min(y0 + kTileH, size_t(height)); ++y) {
+        if (primary) cameraDirections(*g.basis, screenX, cameraScreenY(*g.basis, int(y)), dirX, dirY, dirZ);
         for (size_t x = x0; x < std::min(x0 + kTileW, size_t(width)); ++x) {
-          const size_t i = y * size_t(width) + x;
-          PathState& path = paths[i];
-          if (primary) path.ray = primaryRay(*g.basis, int(x), int(y));
+          const size_t j = n++;
+          pixel[j] = y * size_t(width) + x;
+          if (pixels) tilePaths[j] = PathState{};
+          PathState& path = pathOf(j);
+          if (primary) {  // field by field: a whole-Ray copy reloads it across its partial stores
+            path.ray.origin = g.basis->eye;
+            path.ray.direction = glm::vec3(dirX[x - x0], dirY[x - x0], dirZ[x - x0]);
+            path.ray.tMax = kInfinity;
+          }
           if (path.kind == RayKind::None) continue;
           ++count;
           const int shadow = path.kind == RayKind::Shadow;
           if (!shadow && !primary) {
             RayStats stats;
-            hits[i] = accelerator_.intersect(path.ray, false, &stats);
+            tileHits[j] = accelerator_.intersect(path.ray, false, &stats);
             path.steps += stats.steps;
             path.triangleTests += stats.triangleTests;
             continue;
           }
-          members[shadow][sizes[shadow]++] = i;
+          members[shadow][sizes[shadow]++] = uint8_t(j);
         }
+      }
       for (int shadow = 0; shadow < 2; ++shadow)
         for (size_t first = 0; first < sizes[shadow]; first += packetMax[shadow]) {
           const size_t m = std::min(packetMax[shadow], sizes[shadow] - first);
-          const size_t* index = members[shadow] + first;
-          Ray rays[kTile];
-          Hit packetHits[kTile];
-          RayStats packetStats[kTile];
-          for (size_t k = 0; k < m; ++k) rays[k] = paths[index[k]].ray;
+          const uint8_t* index = members[shadow] + first;
+          for (size_t k = 0; k < m; ++k) rays[k] = pathOf(index[k]).ray, packetStats[k] = RayStats{};
           accelerator_.tracePacket(std::span<const Ray>(rays, m), shadow != 0, std::span<Hit>(packetHits, m),
                                    std::span<RayStats>(packetStats, m));
           for (size_t k = 0; k < m; ++k) {
-            hits[index[k]] = packetHits[k];
-            paths[index[k]].steps += packetStats[k].steps;
-            paths[index[k]].triangleTests += packetStats[k].triangleTests;
+            tileHits[index[k]] = packetHits[k];
+            pathOf(index[k]).steps += packetStats[k].steps;
+            pathOf(index[k]).triangleTests += packetStats[k].triangleTests;
           }
         }
-      // Shaded while the tile's paths are still in the cache.
-      for (size_t y = y0; y < std::min(y0 + kTileH, size_t(height)); ++y)
-        for (size_t x = x0; x < std::min(x0 + kTileW, size_t(width)); ++x) {
-          const size_t i = y * size_t(width) + x;
-          shade(g, i, hits[i], paths[i]);
-        }
+      // Shaded while the tile's paths are still in the cache; the hit
+      // triangles' shading data is fetched for the whole tile first, so that
+      // its cache misses overlap instead of stalling one pixel at a time.
+      for (size_t j = 0; j < n; ++j) prefetchShading(tileHits[j]);
+      for (size_t j = 0; j < n; ++j) {
+        PathState& path = pathOf(j);
+        shade(g, pixel[j], tileHits[j], path);
+        if (g.keepHits) hits[pixel[j]] = tileHits[j];
+        if (!pixels) continue;
+        float* rgb = pixels->rgb.data() + 3 * pixel[j];  // not copy_n: that called memmove per pixel
+        rgb[0] = path.color.r, rgb[1] = path.color.g, rgb[2] = path.color.b;
+        pixels->steps[pixel[j]] = float(path.steps);
+        counts.steps += path.steps;
+        counts.triangleTests += path.triangleTests;
+        counts.maxStepsPerRay = std::max<uint64_t>(counts.maxStepsPerRay, path.steps);
+        counts.maxTriangleTestsPerRay = std::max<uint64_t>(counts.maxTriangleTestsPerRay, path.triangleTests);
+      }
     }
     active += count;
+    if (!pixels) return;
+    const std::lock_guard<std::mutex> hold(statsLock);
+    addPixelCounts(pixels->stats, counts);
   });
   return active;
 }
@@ -160,13 +215,18 @@ FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height,
   FrameResult result;
   result.width = width;
   result.height = height;
-  std::vector<PathState> paths(elements);
-  std::vector<Hit> hits(elements);
-  BatchScratch scratch;
   // Whitted and AO trace until no pixel has a ray left: -b bounds the ray
   // tree's depth (whitted) or is not read (ao), not the generations.
   const bool thesis = shading_.mode == ShadingMode::Thesis;
   const int generations = thesis ? bounces : std::numeric_limits<int>::max();
+  const bool packets = accelerator_.packetSize() > 0, batch = !packets && accelerator_.tracesBatches();
+  // Packet rows shade a primary-only frame tile by tile and write its pixels
+  // straight out: no path state outlives a tile (tracePackets).
+  const bool tilePixels = packets && generations == 1;
+  if (tilePixels) result.rgb.assign(3 * elements, 0.0f), result.steps.assign(elements, 0.0f);
+  std::vector<PathState> paths(tilePixels ? 0 : elements);
+  std::vector<Hit> hits(packets && !captureHits ? 0 : elements);  // packet rows keep hits in the tile
+  BatchScratch scratch;
   std::vector<WhittedStack> stacks(shading_.mode == ShadingMode::Whitted ? elements : 0);
   const float aoLength = aoDistance(scene_, shading_);
   const auto start = std::chrono::steady_clock::now();
@@ -176,7 +236,6 @@ FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height,
   // traces a whole generation at once, so it generates and shades in passes of
   // their own; so do per-ray rows: in one pass, shading between traversals
   // made bvh8 3 % slower than main (why: not measured); apart, 1.03-1.05x faster.
-  const bool packets = accelerator_.packetSize() > 0, batch = !packets && accelerator_.tracesBatches();
   if (!packets)
     parallelFor(elements, kGrain, threads_, [&](size_t begin, size_t end) {
       for (size_t i = begin; i < end; ++i)
@@ -185,13 +244,13 @@ FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height,
 
   for (int bounce = 1; bounce <= generations; ++bounce) {
     const Generation g{bounce == 1 && packets ? &basis : nullptr, width, epsilon, bounce == bounces, bounces,
-                       aoLength, &stacks};
+                       aoLength, &stacks, bounce == 1 && captureHits};
     // Shading an element without a ray changes nothing (shadeWhitted pops a
     // pending ray only when it has one), so a generation that traced nothing
     // was shaded for nothing and the loop ends as before.
     std::atomic<uint64_t> active{0};
     if (packets)
-      active = tracePackets(paths, hits, g, height);
+      active = tracePackets(paths, hits, g, height, tilePixels ? &result : nullptr);
     else if (batch)
       active = traceGeneration(paths, hits, bounce == 1, width, height, result.stats, scratch);
     else
@@ -215,15 +274,16 @@ FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height,
   result.stats.frameMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start - excluded).count();
 
+  if (tilePixels) return result;
   result.rgb.reserve(3 * elements);
   result.steps.reserve(elements);
   for (const PathState& p : paths) {
     result.steps.push_back(float(p.steps));
     result.rgb.insert(result.rgb.end(), {p.color.r, p.color.g, p.color.b});
-    result.stats.steps += p.steps;
-    result.stats.triangleTests += p.triangleTests;
-    result.stats.maxStepsPerRay = std::max<uint64_t>(result.stats.maxStepsPerRay, p.steps);
-    result.stats.maxTriangleTestsPerRay = std::max<uint64_t>(result.stats.maxTriangleTestsPerRay, p.triangleTests);
+    FrameStats counts;
+    counts.steps = counts.maxStepsPerRay = p.steps;
+    counts.triangleTests = counts.maxTriangleTestsPerRay = p.triangleTests;
+    addPixelCounts(result.stats, counts);
   }
   return result;
 }

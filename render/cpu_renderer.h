@@ -35,8 +35,11 @@ class CpuRenderer {
     int bounces;
     float aoLength;
     std::vector<WhittedStack>* stacks;
+    bool keepHits;  // packet rows: store the hits (the primary ones, for --hits); else they stay in the tile
   };
   void shade(const Generation& g, size_t i, const Hit& hit, PathState& path) const;
+  // Starts loading what shading `hit` reads (its shading-table entry and vertex normals).
+  void prefetchShading(const Hit& hit) const;
 
   // The batch path's per-element arrays, kept for all generations of a frame.
   struct BatchScratch {
@@ -51,8 +54,10 @@ class CpuRenderer {
   // One bounce through CpuAccelerator::tracePacket, 8x4 pixel tiles built
   // from the paths' rays (generated here in the primary generation), each
   // tile shaded right after; adds the stats to the paths; returns the rays traced.
+  // With `pixels` (a frame of primary rays only) the paths are the tile's own
+  // and `pixels` gets their colours, steps and counts; `paths` is not read.
   uint64_t tracePackets(std::vector<PathState>& paths, std::vector<Hit>& hits, const Generation& g,
-                        int height) const;
+                        int height, FrameResult* pixels) const;
   // One bounce ray by ray through CpuAccelerator::intersect; returns the rays traced.
   uint64_t traceRays(std::vector<PathState>& paths, std::vector<Hit>& hits) const;
 
