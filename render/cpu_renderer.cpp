@@ -29,7 +29,9 @@ CpuRenderer::CpuRenderer(const Scene& scene, const CpuAccelerator& accelerator, 
       accelerator_(accelerator),
       threads_(threads ? threads : std::thread::hardware_concurrency()),
       shading_(shading),
-      table_(makeShadingTable(scene, threads_)) {}
+      table_(makeShadingTable(scene, threads_)),
+      epsilon_(secondaryRayEpsilon(scene)),
+      aoLength_(aoDistance(scene, shading)) {}
 
 void CpuRenderer::prefetchShading(const Hit& hit) const {
   if (hit.id >= table_.size()) return;
@@ -209,7 +211,6 @@ uint64_t CpuRenderer::traceRays(std::vector<PathState>& paths, std::vector<Hit>&
 FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height, int bounces, bool captureHits) {
   const CameraBasis basis = makeCameraBasis(camera, width, height);
   const size_t elements = size_t(width) * size_t(height);
-  const float epsilon = secondaryRayEpsilon(scene_);
   constexpr size_t kGrain = 256;  // pixels per work item: about one image row
 
   FrameResult result;
@@ -228,7 +229,6 @@ FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height,
   std::vector<Hit> hits(packets && !captureHits ? 0 : elements);  // packet rows keep hits in the tile
   BatchScratch scratch;
   std::vector<WhittedStack> stacks(shading_.mode == ShadingMode::Whitted ? elements : 0);
-  const float aoLength = aoDistance(scene_, shading_);
   const auto start = std::chrono::steady_clock::now();
   std::chrono::steady_clock::duration excluded{};
 
@@ -243,8 +243,8 @@ FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height,
     });
 
   for (int bounce = 1; bounce <= generations; ++bounce) {
-    const Generation g{bounce == 1 && packets ? &basis : nullptr, width, epsilon, bounce == bounces, bounces,
-                       aoLength, &stacks, bounce == 1 && captureHits};
+    const Generation g{bounce == 1 && packets ? &basis : nullptr, width, epsilon_, bounce == bounces, bounces,
+                       aoLength_, &stacks, bounce == 1 && captureHits};
     // Shading an element without a ray changes nothing (shadeWhitted pops a
     // pending ray only when it has one), so a generation that traced nothing
     // was shaded for nothing and the loop ends as before.

@@ -66,6 +66,9 @@ class CpuRenderer {
   unsigned threads_;
   ShadingConfig shading_;
   std::vector<ShadingEntry> table_;  // makeShadingTable(scene_)
+  // Read from the scene's bounds once here, not per frame (a pass over every triangle).
+  float epsilon_;   // secondaryRayEpsilon(scene_)
+  float aoLength_;  // aoDistance(scene_, shading_)
 };
 
 }  // namespace passtrace
