@@ -20,6 +20,15 @@ using Clock = std::chrono::steady_clock;
 
 }  // namespace
 
+void setRaygenCamera(StreamKernel& raygen, const CameraBasis& basis) {
+  raygen.set("uEye", basis.eye);
+  raygen.set("uForward", basis.forward);
+  raygen.set("uRight", basis.right);
+  raygen.set("uUp", basis.up);
+  raygen.set("uTanHalfFov", basis.tanHalfFov);
+  raygen.set("uResolution", glm::vec2(basis.width, basis.height));
+}
+
 GpuRenderer::GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width, int height, uint64_t maxPageTexels,
                          ShadingConfig shading, Compaction compact)
     : scene_(scene),
@@ -89,9 +98,10 @@ void GpuRenderer::mixLightChanged() {
   if (shading_.mode == ShadingMode::Whitted) {
     const int lights = whittedLightCount(scene_);
     for (int k = 0; k < lights; ++k) {
-      const std::string index = "[" + std::to_string(k) + "]";
-      mixShade_->set(("uLightPositions" + index).c_str(), whittedLight(scene_, k).position);
-      mixShade_->set(("uLightColors" + index).c_str(), whittedLight(scene_, k).color);
+      // Appended, not "[" + ...: GCC 12 warns (-Wrestrict) on that insert once inlined here.
+      const auto element = [k](std::string array) { return (array += '[') += std::to_string(k) + ']'; };
+      mixShade_->set(element("uLightPositions").c_str(), whittedLight(scene_, k).position);
+      mixShade_->set(element("uLightColors").c_str(), whittedLight(scene_, k).color);
     }
     mixShade_->set("uLightCount", lights);
     mixShade_->set("uAmbient", scene_.ambient);
@@ -124,12 +134,7 @@ FrameResult GpuRenderer::render(const CameraSpec& camera, int bounces, bool capt
   Clock::duration excluded{};
   const auto start = Clock::now();
 
-  raygen_.set("uEye", basis.eye);
-  raygen_.set("uForward", basis.forward);
-  raygen_.set("uRight", basis.right);
-  raygen_.set("uUp", basis.up);
-  raygen_.set("uTanHalfFov", basis.tanHalfFov);
-  raygen_.set("uResolution", glm::vec2(basis.width, basis.height));
+  setRaygenCamera(raygen_, basis);
   rays_.clearDepth(1.0f);
   rays_.setWriteSurfaces(kAllSurfaces);
   raygen_.execute();

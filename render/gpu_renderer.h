@@ -17,6 +17,11 @@
 
 namespace passtrace {
 
+struct CameraBasis;
+
+// Sets raygen.frag's camera uniforms: its rays are primaryRay(basis, ...)'s.
+void setRaygenCamera(StreamKernel& raygen, const CameraBasis& basis);
+
 class GpuRenderer {
  public:
   // `scene` and `traversal` must outlive the renderer. `maxPageTexels` as in

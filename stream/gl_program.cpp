@@ -1,5 +1,9 @@
 #include "stream/gl_program.h"
 
+#include <initializer_list>
+#include <utility>
+
+#include "stream/compute_variant.h"
 #include "stream/gl_error.h"
 #include "stream/glsl_sources.h"
 
@@ -17,11 +21,13 @@ std::string infoLog(GLuint object, bool isProgram) {
   return log;
 }
 
+// `transform` rewrites the assembled source (the compute variant), or is null.
 GLuint compile(GLenum type, const std::string& kernel, const std::string& file,
-               const std::vector<std::string>& defines) {
+               const std::vector<std::string>& defines, std::string (*transform)(std::string) = nullptr) {
   AssembledGlsl glsl;
   try {
     glsl = assembleGlsl(file, defines);
+    if (transform) glsl.source = transform(std::move(glsl.source));
   } catch (const std::exception& e) {
     throw GlError("kernel " + kernel + " (" + file + "): " + e.what());
   }
@@ -37,6 +43,23 @@ GLuint compile(GLenum type, const std::string& kernel, const std::string& file,
   throw GlError("kernel " + kernel + " (" + file + "): compile failed: " + log);
 }
 
+// Links the compiled shaders (deleting them) into a program.
+GLuint link(const std::string& name, const std::string& file, std::initializer_list<GLuint> shaders) {
+  const GLuint program = glCreateProgram();
+  for (const GLuint shader : shaders) glAttachShader(program, shader);
+  glLinkProgram(program);
+  for (const GLuint shader : shaders) glDeleteShader(shader);
+  GLint ok = GL_FALSE;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    const std::string log = infoLog(program, true);
+    glDeleteProgram(program);
+    throw GlError("kernel " + name + " (" + file + "): link failed: " + log);
+  }
+  checkGlError("linking kernel " + name);
+  return program;
+}
+
 }  // namespace
 
 GLuint linkProgram(const std::string& name, const std::string& vertexFile, const std::string& fragmentFile,
@@ -49,21 +72,12 @@ GLuint linkProgram(const std::string& name, const std::string& vertexFile, const
     glDeleteShader(vs);
     throw;
   }
-  const GLuint program = glCreateProgram();
-  glAttachShader(program, vs);
-  glAttachShader(program, fs);
-  glLinkProgram(program);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint ok = GL_FALSE;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    const std::string log = infoLog(program, true);
-    glDeleteProgram(program);
-    throw GlError("kernel " + name + " (" + fragmentFile + "): link failed: " + log);
-  }
-  checkGlError("linking kernel " + name);
-  return program;
+  return link(name, fragmentFile, {vs, fs});
+}
+
+GLuint linkComputeProgram(const std::string& name, const std::string& fragmentFile,
+                          const std::vector<std::string>& defines) {
+  return link(name, fragmentFile, {compile(GL_COMPUTE_SHADER, name, fragmentFile, defines, computeVariant)});
 }
 
 }  // namespace passtrace

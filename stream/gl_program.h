@@ -1,6 +1,7 @@
 #pragma once
 // Compiling and linking a vertex + fragment program from kernels_glsl/ files,
-// with failures reported by kernel name, GLSL file and line.
+// or a fragment kernel's compute variant, with failures reported by kernel
+// name, GLSL file and line.
 
 #include <string>
 #include <vector>
@@ -13,5 +14,9 @@ namespace passtrace {
 // failed: FILE:LINE ...") with the driver's log translated to file lines.
 GLuint linkProgram(const std::string& name, const std::string& vertexFile, const std::string& fragmentFile,
                    const std::vector<std::string>& defines = {});
+// The compute variant of fragment kernel `fragmentFile` (compute_variant.h),
+// with errors reported as above.
+GLuint linkComputeProgram(const std::string& name, const std::string& fragmentFile,
+                          const std::vector<std::string>& defines = {});
 
 }  // namespace passtrace

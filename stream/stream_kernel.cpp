@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "stream/compute_variant.h"
 #include "stream/const_input_stream.h"
 #include "stream/gl_error.h"
 #include "stream/gl_program.h"
@@ -16,6 +17,19 @@ StreamKernel::StreamKernel(std::string name, const std::string& glslFile, Depth 
   program_ = linkProgram(name_, "fullscreen_quad.vert", glslFile, defines);
   glCreateQueries(GL_SAMPLES_PASSED, 1, &query_);
   glCreateVertexArrays(1, &vertexArray_);  // core profile draws need a VAO, even an empty one
+  checkGlError("creating kernel " + name_);
+}
+
+StreamKernel::StreamKernel(std::string name, const std::string& glslFile, Stage stage,
+                           const std::vector<std::string>& defines)
+    : name_(std::move(name)), depth_(Depth::Test), stage_(stage) {
+  if (stage_ == Stage::Fragment) {
+    program_ = linkProgram(name_, "fullscreen_quad.vert", glslFile, defines);
+    glCreateVertexArrays(1, &vertexArray_);
+  } else {
+    program_ = linkComputeProgram(name_, glslFile, defines);
+  }
+  glCreateQueries(GL_SAMPLES_PASSED, 1, &query_);
   checkGlError("creating kernel " + name_);
 }
 
@@ -77,10 +91,32 @@ void StreamKernel::bindInput(const char* sampler, const InOutStream& stream, int
 
 void StreamKernel::bindStorage(GLuint binding, const StorageBuffer& buffer) { storage_[binding] = &buffer; }
 
-uint64_t StreamKernel::execute(bool countFragments) {
+void StreamKernel::bindOutput(GLuint location, const InOutStream& stream, int surface) {
+  outputs_[location] = stream.surfaceTexture(surface);
+}
+
+void StreamKernel::bindResources() {
   glUseProgram(program_);
   for (const auto& [sampler, binding] : textures_) glBindTextureUnit(binding.first, binding.second);
   for (const auto& [binding, buffer] : storage_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer->buffer());
+}
+
+void StreamKernel::dispatch(int width, int height) {
+  if (stage_ != Stage::Compute) throw GlError("kernel " + name_ + ": dispatch() needs Stage::Compute");
+  bindResources();
+  for (const auto& [unit, texture] : outputs_)
+    glBindImageTexture(unit, texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  glProgramUniform2ui(program_, location("uComputeSize_"), GLuint(width), GLuint(height));
+  const auto groups = [](int n) { return GLuint((n + kComputeGroupSize - 1) / kComputeGroupSize); };
+  glDispatchCompute(groups(width), groups(height), 1);
+  // Later passes read the outputs as textures (or images), and stacks as storage.
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+  checkGlError("dispatching kernel " + name_);
+}
+
+uint64_t StreamKernel::execute(bool countFragments) {
+  if (stage_ != Stage::Fragment) throw GlError("kernel " + name_ + ": execute() needs Stage::Fragment");
+  bindResources();
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   // The cull kernel only retires elements; it must leave every surface as it is.

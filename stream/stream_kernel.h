@@ -5,6 +5,11 @@
 // early depth test and never run. With countFragments it returns the
 // occlusion-query count of fragments that passed the depth test and were not
 // discarded.
+//
+// Stage::Compute builds the same file as a compute shader instead
+// (compute_variant.h) for measuring the fragment-pass model against it:
+// dispatch() runs every element, with no depth test and no count, and
+// writes the surfaces bindOutput() named.
 
 #include <cstdint>
 #include <map>
@@ -33,6 +38,9 @@ class StreamKernel {
   // driver's log on failure.
   StreamKernel(std::string name, const std::string& glslFile, Depth depth = Depth::Test,
                const std::vector<std::string>& defines = {});
+  enum class Stage { Fragment, Compute };
+  StreamKernel(std::string name, const std::string& glslFile, Stage stage,
+               const std::vector<std::string>& defines = {});
   ~StreamKernel();
   StreamKernel(const StreamKernel&) = delete;
   StreamKernel& operator=(const StreamKernel&) = delete;
@@ -56,20 +64,31 @@ class StreamKernel {
   // executions.
   void bindStorage(GLuint binding, const StorageBuffer& buffer);
 
+  // Stage::Fragment only.
   uint64_t execute(bool countFragments = false);
+
+  // Stage::Compute only: the surface that `layout(location = location) out`
+  // writes; kept until bound again.
+  void bindOutput(GLuint location, const InOutStream& stream, int surface);
+  // Stage::Compute only: runs the kernel over width x height elements.
+  void dispatch(int width, int height);
 
  private:
   GLint location(const char* uniform);
   void bindTexture(const char* sampler, GLuint texture);
 
+  void bindResources();
+
   std::string name_;
   Depth depth_;
+  Stage stage_ = Stage::Fragment;
   GLuint program_ = 0;
   GLuint query_ = 0;
   GLuint vertexArray_ = 0;
   std::map<std::string, GLint> locations_;
   std::map<std::string, std::pair<GLuint, GLuint>> textures_;  // sampler -> (unit, texture)
   std::map<GLuint, const StorageBuffer*> storage_;             // binding point -> buffer
+  std::map<GLuint, GLuint> outputs_;                           // compute: image unit -> texture
 };
 
 }  // namespace passtrace

@@ -9,6 +9,7 @@
 #include "accel/bvh/escape_sequence.h"
 #include "accel/bvh/kay_kajiya_builder.h"
 #include "render/camera.h"
+#include "render/gpu_renderer.h"
 #include "accel/bvh/gpu_bvh_traversal.h"
 #include "accel/ray_stream_layout.h"
 #include "render/scene_streams.h"
@@ -89,12 +90,7 @@ TEST_F(GlTest, RayGenerationMatchesCameraContract) {
   const CameraBasis basis = makeCameraBasis(camera, w, h);
   InOutStream rays(w, h, kRaySurfaceCount);
   StreamKernel raygen("raygen", "raygen.frag");
-  raygen.set("uEye", basis.eye);
-  raygen.set("uForward", basis.forward);
-  raygen.set("uRight", basis.right);
-  raygen.set("uUp", basis.up);
-  raygen.set("uTanHalfFov", basis.tanHalfFov);
-  raygen.set("uResolution", glm::vec2(w, h));
+  setRaygenCamera(raygen, basis);
   rays.enable();
   rays.clearDepth(1.0f);
   rays.setWriteSurfaces({0, 1, 2, 3, 4, 5, 6});
@@ -117,15 +113,62 @@ TEST_F(GlTest, RayGenerationMatchesCameraContract) {
   EXPECT_LT(glm::dot(glm::vec3(direction[0]), basis.right), 0.0f);
 }
 
+// The compute variant of a kernel (StreamKernel::Stage::Compute) writes what
+// its fragment pass writes, bit for bit: here all seven surfaces of ray
+// generation, on a stream whose sides are not multiples of the work group's.
+TEST_F(GlTest, ComputeStageWritesWhatTheFragmentPassWrites) {
+  const int w = 37, h = 23;
+  const CameraBasis basis = makeCameraBasis(CameraSpec{{1.0f, 2.0f, 3.0f}, {0.5f, -1.0f, 0.25f}, {0, 1, 0}, 52.0f}, w, h);
+  std::vector<std::vector<glm::vec4>> written[2];
+  for (const auto stage : {StreamKernel::Stage::Fragment, StreamKernel::Stage::Compute}) {
+    InOutStream rays(w, h, kRaySurfaceCount);
+    for (int s = 0; s < kRaySurfaceCount; ++s) rays.upload(s, std::vector<glm::vec4>(size_t(w * h), glm::vec4(-7.0f)));
+    StreamKernel raygen("raygen", "raygen.frag", stage);
+    setRaygenCamera(raygen, basis);
+    if (stage == StreamKernel::Stage::Fragment) {
+      rays.enable();
+      rays.clearDepth(1.0f);
+      rays.setWriteSurfaces({0, 1, 2, 3, 4, 5, 6});
+      raygen.execute();
+      rays.disable();
+    } else {
+      for (int s = 0; s < kRaySurfaceCount; ++s) raygen.bindOutput(GLuint(s), rays, s);
+      raygen.dispatch(w, h);
+    }
+    for (int s = 0; s < kRaySurfaceCount; ++s) written[int(stage)].push_back(rays.read(s));
+  }
+  for (int s = 0; s < kRaySurfaceCount; ++s)
+    for (size_t i = 0; i < size_t(w * h); ++i)
+      ASSERT_EQ(written[1][s][i], written[0][s][i]) << "surface " << s << ", element " << i;
+  EXPECT_EQ(written[1][kOriginSurface].back(), glm::vec4(basis.eye, float(RayKind::Nearest)));  // the last one ran
+}
+
+// A fragment kernel that discards writes nothing where it does, which a
+// compute shader's stores cannot express: no compute variant.
+TEST_F(GlTest, DiscardingKernelHasNoComputeVariant) {
+  try {
+    StreamKernel cull("cull", "cull.frag", StreamKernel::Stage::Compute);
+    FAIL() << "built a compute variant of a discarding kernel";
+  } catch (const GlError& e) {
+    EXPECT_NE(std::string(e.what()).find("kernel cull (cull.frag): the kernel discards"), std::string::npos) << e.what();
+  }
+}
+
 // Runs test_functions.frag with `define` over elements given as up to 5 input surfaces.
-std::vector<glm::vec4> runFunctionKernel(const char* define, const std::vector<std::vector<glm::vec4>>& inputs) {
+std::vector<glm::vec4> runFunctionKernel(const char* define, const std::vector<std::vector<glm::vec4>>& inputs,
+                                         StreamKernel::Stage stage = StreamKernel::Stage::Fragment) {
   const int n = int(inputs[0].size());
   InOutStream in(n, 1, 5), out(n, 1, 1);
-  StreamKernel kernel("test", "test_functions.frag", StreamKernel::Depth::Test, {define});
+  StreamKernel kernel("test", "test_functions.frag", stage, {define});
   const char* names[] = {"uIn0", "uIn1", "uIn2", "uIn3", "uIn4"};
   for (size_t s = 0; s < inputs.size(); ++s) {
     in.upload(int(s), inputs[s]);
     kernel.bindInput(names[s], in, int(s));
+  }
+  if (stage == StreamKernel::Stage::Compute) {
+    kernel.bindOutput(0, out, 0);
+    kernel.dispatch(n, 1);
+    return out.read(0);
   }
   out.enable();
   out.clearDepth(1.0f);
@@ -168,6 +211,8 @@ TEST_F(GlTest, SlabTestMatchesCpp) {
   }
   EXPECT_GT(hits, 20);  // the random rays exercise both outcomes
   EXPECT_LT(hits, int(rays.size()) - 20);
+  // Its compute variant reads the same samplers and answers alike.
+  EXPECT_EQ(runFunctionKernel("TEST_SLAB", {o, d, lo, hi}, StreamKernel::Stage::Compute), result);
 }
 
 TEST_F(GlTest, TriangleTestMatchesCpp) {

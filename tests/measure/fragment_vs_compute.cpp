@@ -3,8 +3,8 @@
 // kernel (kernels_glsl/bvh/bvh_traverse.frag, unchanged) over the scene's
 // primary rays, drawn as the stream layer draws it (a full-screen quad into
 // the ray stream's float surfaces) and dispatched as a compute shader made
-// from the same assembled source (outputs become image stores, gl_FragCoord
-// the invocation's pixel). Both passes start from the same uploaded rays;
+// from the same source (StreamKernel::Stage::Compute, stream/compute_variant.h:
+// outputs become image stores, gl_FragCoord the invocation's pixel). Both passes start from the same uploaded rays;
 // their state and hit surfaces must agree bit for bit, and the tool says so.
 // Prints one JSON line: the minimum time of each over the repeats (glFinish
 // and a steady clock, after one untimed warm-up) and their ratio.
@@ -21,9 +21,7 @@
 #include <cstring>
 #include <exception>
 #include <limits>
-#include <regex>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "accel/bvh/bvh_structures.h"
@@ -33,8 +31,6 @@
 #include "scenes/scene_registry.h"
 #include "stream/const_input_stream.h"
 #include "stream/gl_context.h"
-#include "stream/gl_error.h"
-#include "stream/glsl_sources.h"
 #include "stream/inout_stream.h"
 #include "stream/shader_loop_budget.h"
 #include "stream/stream_kernel.h"
@@ -44,60 +40,6 @@ namespace {
 
 using namespace passtrace;
 using Clock = std::chrono::steady_clock;
-
-constexpr int kGroup = 8;  // 8x8 invocations per work group
-
-// The fragment kernel's source as a compute shader. Each `layout(location = N)
-// out vec4 NAME` becomes a global written to image unit N at the end;
-// gl_FragCoord becomes the invocation's pixel centre. (A kernel that
-// discards or tests gl_HelperInvocation would need more; kk-bvh's does neither.)
-std::string computeVariant(std::string source) {
-  if (std::regex_search(source, std::regex(R"(\bdiscard\s*;|gl_HelperInvocation)")))
-    throw GlError("compute variant: the kernel discards or tests helper invocations");
-  source = std::regex_replace(source, std::regex(R"(\bgl_FragCoord\b)"), "fragCoord_");
-  const std::size_t afterVersion = source.find('\n') + 1;
-  source.insert(afterVersion, "vec4 fragCoord_;\n");
-  source = std::regex_replace(source, std::regex(R"(layout\(early_fragment_tests\)\s+in;)"), "");
-  std::vector<std::pair<int, std::string>> outputs;
-  const std::regex output(R"(layout\(location\s*=\s*(\d+)\)\s*out\s+vec4\s+(\w+);)");
-  for (std::sregex_iterator it(source.begin(), source.end(), output), end; it != end; ++it)
-    outputs.emplace_back(std::stoi((*it)[1]), (*it)[2]);
-  source = std::regex_replace(source, output, "vec4 $2;");
-  source = std::regex_replace(source, std::regex(R"(void\s+main\s*\(\s*\))"), "void fragmentMain()");
-  source += "\nlayout(local_size_x = " + std::to_string(kGroup) + ", local_size_y = " + std::to_string(kGroup) +
-            ") in;\nuniform uvec2 uSize_;\n";
-  for (const auto& [unit, name] : outputs)
-    source += "layout(rgba32f, binding = " + std::to_string(unit) + ") uniform writeonly image2D " + name + "Image_;\n";
-  source += "void main() {\n  if (any(greaterThanEqual(gl_GlobalInvocationID.xy, uSize_))) return;\n"
-            "  fragCoord_ = vec4(vec2(gl_GlobalInvocationID.xy) + 0.5, 0.5, 1.0);\n  fragmentMain();\n";
-  for (const auto& [unit, name] : outputs)
-    source += "  imageStore(" + name + "Image_, ivec2(gl_GlobalInvocationID.xy), " + name + ");\n";
-  return source + "}\n";
-}
-
-GLuint linkCompute(const std::string& source) {
-  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-  const char* text = source.c_str();
-  glShaderSource(shader, 1, &text, nullptr);
-  glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  std::string log(4096, '\0');
-  if (!ok) {
-    glGetShaderInfoLog(shader, GLsizei(log.size()), nullptr, log.data());
-    throw GlError("compute variant: compile failed: " + log.substr(0, log.find('\0')));
-  }
-  const GLuint program = glCreateProgram();
-  glAttachShader(program, shader);
-  glLinkProgram(program);
-  glDeleteShader(shader);
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    glGetProgramInfoLog(program, GLsizei(log.size()), nullptr, log.data());
-    throw GlError("compute variant: link failed: " + log.substr(0, log.find('\0')));
-  }
-  return program;
-}
 
 struct Rays {
   std::vector<glm::vec4> origin, direction, state, hit;
@@ -173,44 +115,27 @@ int main(int argc, char** argv) {
     }
     const std::vector<glm::vec4> fragmentState = stream.read(kStateSurface), fragmentHit = stream.read(kHitSurface);
 
-    // The same source as a compute shader, over the same textures.
-    const GLuint program = linkCompute(computeVariant(assembleGlsl("bvh/bvh_traverse.frag", defines).source));
-    const auto uniform = [&](const std::string& name) { return glGetUniformLocation(program, name.c_str()); };
-    GLint unit = 0;
-    for (int i = 0; i < 4; ++i) {
-      glBindTextureUnit(GLuint(unit), stream.surfaceTexture(surfaces[i]));
-      glProgramUniform1i(program, uniform(samplers[i]), unit++);
-    }
-    for (uint32_t p = 0; p < sequence.pageCount(); ++p) {
-      glBindTextureUnit(GLuint(unit), sequence.texture(p));
-      glProgramUniform1i(program, uniform("uSequence.pages[" + std::to_string(p) + "]"), unit++);
-    }
-    glProgramUniform1ui(program, uniform("uSequence.widthLog2"), sequence.widthLog2());
-    glProgramUniform1ui(program, uniform("uSequence.pageLog2"), sequence.pageLog2());
-    glProgramUniform1ui(program, uniform("uSequenceSize"), size);
-    glProgramUniform1i(program, uniform("uLoopLimit"), steps);
-    glProgramUniform2ui(program, uniform("uSize_"), uint32_t(width), uint32_t(width));
-    // Outputs at location 0 (state) and 1 (hit), as the fragment pass's draw buffers.
-    glBindImageTexture(0, stream.surfaceTexture(kStateSurface), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glBindImageTexture(1, stream.surfaceTexture(kHitSurface), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    const GLuint groups = GLuint((width + kGroup - 1) / kGroup);
+    // The same source as a compute shader (StreamKernel::Stage::Compute), over the same textures.
+    StreamKernel compute("bvh_traverse", "bvh/bvh_traverse.frag", StreamKernel::Stage::Compute, defines);
+    compute.bindInput("uSequence", sequence);
+    compute.set("uSequenceSize", size);
+    compute.set("uLoopLimit", steps);
+    for (int i = 0; i < 4; ++i) compute.bindInput(samplers[i], stream, surfaces[i]);
+    compute.bindOutput(0, stream, kStateSurface);  // as the fragment pass's draw buffers
+    compute.bindOutput(1, stream, kHitSurface);
     double computeMs = std::numeric_limits<double>::infinity();
     for (int r = -1; r < repeats; ++r) {
       reset(stream, rays);
-      glUseProgram(program);
       const auto start = Clock::now();
-      glDispatchCompute(groups, groups, 1);
-      glMemoryBarrier(GL_ALL_BARRIER_BITS);
+      compute.dispatch(width, width);
       glFinish();
       if (r >= 0) computeMs = std::min(computeMs, millisecondsSince(start));
     }
-    checkGlError("the compute variant");
     const std::vector<glm::vec4> computeState = stream.read(kStateSurface), computeHit = stream.read(kHitSurface);
     uint64_t differ = 0;
     for (std::size_t i = 0; i < computeState.size(); ++i)
       differ += std::memcmp(&computeState[i], &fragmentState[i], sizeof(glm::vec4)) != 0 ||
                 std::memcmp(&computeHit[i], &fragmentHit[i], sizeof(glm::vec4)) != 0;
-    glDeleteProgram(program);
 
     const double n = double(width) * width;
     std::printf(
