@@ -41,9 +41,16 @@ struct alignas(16) Box4 {
   Aabb aabb() const { return Aabb{{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}; }
 };
 
+// A triangle's box; its centroid is computed where needed, as Aabb::center()
+// rounds it: keeping it too doubled the bytes the binning and the partitions
+// read per triangle.
 struct Prim {
   Box4 box;
-  Box4 centroid;  // lo = hi = the box's center
+  Float4 centroid() const { return 0.5f * (box.lo + box.hi); }
+  Box4 centroidBox() const {
+    const Float4 c = centroid();
+    return {c, c};
+  }
 };
 
 // The builder's node: written once when its parent splits, so its storage is
@@ -87,13 +94,13 @@ struct Binner {
       scale[a] = a < 3 && e > 0.0f ? float(n) * (1.0f - 1e-6f) / e : 0.0f;
     }
   }
-  Int4 bins3(const Box4& c) const {
-    const Int4 b = __builtin_convertvector((c.lo - origin) * scale, Int4);
+  Int4 bins3(const Float4& c) const {
+    const Int4 b = __builtin_convertvector((c - origin) * scale, Int4);
     const Int4 zero = {0, 0, 0, 0}, last = {bins - 1, bins - 1, bins - 1, bins - 1};
     const Int4 low = b < zero ? zero : b;
     return low > last ? last : low;
   }
-  int bin(const Box4& c, int a) const { return bins3(c)[a]; }
+  int bin(const Float4& c, int a) const { return bins3(c)[a]; }
 };
 
 class Builder {
@@ -111,12 +118,10 @@ public:
         [&](const tbb::blocked_range<size_t>& r, Reduce acc) {
           for (size_t i = r.begin(); i != r.end(); ++i) {
             const Aabb b = tris[i].bounds();
-            const glm::vec3 c = b.center();
             prims_[i].box = Box4{Float4{b.min.x, b.min.y, b.min.z, 0.0f}, Float4{b.max.x, b.max.y, b.max.z, 0.0f}};
-            prims_[i].centroid = Box4{Float4{c.x, c.y, c.z, 0.0f}, Float4{c.x, c.y, c.z, 0.0f}};
             out.prims[i] = uint32_t(i);
             acc.b.extend(prims_[i].box);
-            acc.c.extend(prims_[i].centroid);
+            acc.c.extend(prims_[i].centroidBox());
           }
           return acc;
         },
@@ -147,11 +152,12 @@ private:
     const auto fill = [&](uint32_t b, uint32_t e, Bins& into) {
       for (uint32_t i = b; i < e; ++i) {
         const Prim& p = prims_[out_.prims[i]];
-        const Int4 b = binner.bins3(p.centroid);
+        const Box4 centroid = p.centroidBox();
+        const Int4 b = binner.bins3(centroid.lo);
         for (int a = 0; a < 3; ++a) {
           Bin& bin = into.axis[a][b[a]];
           bin.bounds.extend(p.box);
-          bin.centroids.extend(p.centroid);
+          bin.centroids.extend(centroid);
           ++bin.count;
         }
       }
@@ -228,7 +234,7 @@ private:
       }
       uint32_t* first = out_.prims.data() + begin;
       uint32_t* middle = std::partition(first, out_.prims.data() + end, [&](uint32_t p) {
-        return binner.bin(prims_[p].centroid, bestAxis) < bestSplit;
+        return binner.bin(prims_[p].centroid(), bestAxis) < bestSplit;
       });
       mid = begin + uint32_t(middle - first);
     }
