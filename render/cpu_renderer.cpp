@@ -94,8 +94,8 @@ uint64_t CpuRenderer::traceGeneration(std::vector<PathState>& paths, std::vector
 //
 // A frame of primary rays only (`pixels` given) ends every path in its tile,
 // so the tile's path states live on the stack and only each pixel's colour and
-// counts are written: streaming the 112-byte path state of every pixel through
-// memory and back took a third of an Embree bunny frame.
+// counts are written, instead of streaming every pixel's 112-byte path state
+// through memory and back (4 % of an Embree bunny frame at 512x512).
 uint64_t CpuRenderer::tracePackets(std::vector<PathState>& paths, std::vector<Hit>& hits, const Generation& g,
                                    int height, FrameResult* pixels) const {
   const bool primary = g.basis != nullptr;
