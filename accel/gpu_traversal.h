@@ -9,13 +9,27 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "accel/cpu_accelerator.h"
 
 namespace passtrace {
 
+class ConstInputStream;
 class InOutStream;
 class StreamKernel;
+
+// Issue 17 item 3, fewer passes per bounce: a kernel that runs a primary
+// bounce's ray generation, traversal and thesis shading in one pass. It is
+// its family's kernels_glsl/<family>/*_fused.frag, which includes camera.glsl
+// and shade_thesis.glsl beside its walk; the renderer compiles it with
+// `defines` and the STREAM_PAGES of its own streams and `streams`, sets the
+// camera and shading inputs, and calls GpuTraversal::bindFused for the rest.
+struct FusedBounce {
+  std::string glslFile;
+  std::vector<std::string> defines;
+  std::vector<const ConstInputStream*> streams;
+};
 
 class GpuTraversal {
  public:
@@ -26,6 +40,10 @@ class GpuTraversal {
   // number of traversal passes.
   virtual uint64_t trace(InOutStream& rays, uint64_t active, const std::function<uint64_t()>& retire) = 0;
   virtual AccelStats stats() const = 0;
+  // The structure's fused bounce kernel, or null where it has none.
+  virtual const FusedBounce* fusedBounce() const { return nullptr; }
+  // Binds the structure's own inputs of its fusedBounce() kernel.
+  virtual void bindFused(StreamKernel& /*kernel*/) const {}
 };
 
 // How the uniform grid runs on the GPU (--grid-kernels).

@@ -188,6 +188,13 @@ std::vector<Structure> makeRows() {
        .renderers = {Cpu, Gpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeOctantBvhCpu, .stream = makeOctantBvhStream, .mirror = makeOctantBvhCpu,
        .memory = {777, 1688}, .reads = {P::BvhBuilder}},  // eight sequences (kk-bvh measured 224 / 247 alongside)
+      // Issue 17 item 3, fewer passes per bounce: bvh-octant's walk with ray generation and shading in one pass.
+      {.name = "bvh-octant-fused", .family = "bvh",
+       .description = "bvh-octant on the stream path with a primary bounce in one pass: ray generation, the "
+                      "octant walk and thesis shading fused (other bounces and shadings pass by pass)",
+       .renderers = {Gpu}, .number = std::nullopt, .numberedOn = {},
+       .stream = makeOctantBvhFusedStream, .mirror = makeOctantBvhCpu,
+       .memory = {0, 1688}, .reads = {P::BvhBuilder}},  // bvh-octant's data (no CPU row)
   };
 #if PASSTRACE_HAVE_EMBREE
   rows.push_back({.name = "embree", .family = "embree",

@@ -1,16 +1,10 @@
-// Ray generation: one primary ray per element, by the camera contract of the
-// README (render/camera.cpp computes the same), and a fresh traversal state.
+// Ray generation: one primary ray per element, by the camera contract
+// (camera.glsl), and a fresh traversal state.
 #include "texel_address.glsl"
 #include "ray_kinds.glsl"
+#include "camera.glsl"
 
 layout(early_fragment_tests) in;
-
-uniform vec3 uEye;
-uniform vec3 uForward;
-uniform vec3 uRight;
-uniform vec3 uUp;          // up' = right x forward
-uniform float uTanHalfFov;
-uniform vec2 uResolution;  // width, height
 
 layout(location = 0) out vec4 outOrigin;      // xyz, ray kind
 layout(location = 1) out vec4 outDirection;   // xyz, tMax
@@ -21,12 +15,8 @@ layout(location = 5) out vec4 outThroughput;  // rgb, w: traversal steps so far
 layout(location = 6) out vec4 outPending;     // rgb awaiting a shadow ray, w: triangle tests so far
 
 void main() {
-  // gl_FragCoord is the pixel centre: px + 0.5, py + 0.5 (row 0 is the top row).
-  float sx = (2.0 * gl_FragCoord.x / uResolution.x - 1.0) * uTanHalfFov * (uResolution.x / uResolution.y);
-  float sy = (1.0 - 2.0 * gl_FragCoord.y / uResolution.y) * uTanHalfFov;
-  vec3 d = uForward + sx * uRight + sy * uUp;
   outOrigin = vec4(uEye, RAY_NEAREST);
-  outDirection = vec4(d / sqrt(dot(d, d)), INF);
+  outDirection = vec4(cameraRayDirection(), INF);
   outState = vec4(packIndex(0u), 0.0, 0.0, 1.0);
   outHit = vec4(INF, 0.0, 0.0, packIndex(0u));
   outColor = vec4(0.0);

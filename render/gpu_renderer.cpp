@@ -1,6 +1,7 @@
 #include "render/gpu_renderer.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <limits>
 
@@ -45,14 +46,20 @@ GpuRenderer::GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width,
   cull_.bindInput("uState", rays_, kStateSurface);
   const char* samplers[] = {"uOrigin", "uDirection", "uState", "uHit", "uColor", "uThroughput", "uPending"};
   for (int s : kAllSurfaces) shade_.bindInput(samplers[s], rays_, s);
-  shade_.bindInput("uTriangles", *triangles_);
-  shade_.bindInput("uMaterials", materials_);
-  shade_.set("uLightPosition", scene.light.position);
-  shade_.set("uLightColor", scene.light.color);
-  shade_.set("uBackground", scene.background);
-  shade_.set("uAmbient", scene.ambient);
-  shade_.set("uEpsilon", secondaryRayEpsilon(scene));
+  bindThesisShading(shade_);
   if (shading.mode != ShadingMode::Thesis) makeMixKernel();
+  if (const FusedBounce* fused = traversal.fusedBounce(); fused && shading.mode == ShadingMode::Thesis) {
+    std::vector<const ConstInputStream*> streams = fused->streams;
+    streams.insert(streams.end(), {triangles_.get(), &materials_});
+    std::vector<std::string> defines = fused->defines;
+    defines.push_back(streamPagesDefine(streams));
+    fused_ = std::make_unique<StreamKernel>("fused bounce", fused->glslFile, StreamKernel::Depth::Test, defines);
+    bindThesisShading(*fused_);
+    traversal.bindFused(*fused_);
+    unfinished_ = std::make_unique<StorageBuffer>("the fused bounce's count of unfinished rays");
+    unfinished_->reserve(1);
+    fused_->bindStorage(0, *unfinished_);
+  }
   if (compact != Compaction::Off) compaction_ = std::make_unique<StreamCompaction>(rays_, kStateSurface);
 }
 
@@ -110,17 +117,65 @@ void GpuRenderer::mixLightChanged() {
   }
 }
 
+// The inputs of shade_thesis.glsl: shade.frag's, and a fused bounce's.
+void GpuRenderer::bindThesisShading(StreamKernel& kernel) {
+  kernel.bindInput("uTriangles", *triangles_);
+  kernel.bindInput("uMaterials", materials_);
+  kernel.set("uLightPosition", scene_.light.position);
+  kernel.set("uLightColor", scene_.light.color);
+  kernel.set("uBackground", scene_.background);
+  kernel.set("uAmbient", scene_.ambient);
+  kernel.set("uEpsilon", secondaryRayEpsilon(scene_));  // it follows the scene's bounds
+}
+
 void GpuRenderer::trianglesMoved() {
   // Same size, same pages: the shading kernel's STREAM_PAGES still holds.
+  // An animated light follows too.
   triangles_ = std::make_unique<ConstInputStream>(triangleShadingTexels(scene_), "triangle shading data", maxPageTexels_);
-  shade_.bindInput("uTriangles", *triangles_);
-  shade_.set("uLightPosition", scene_.light.position);  // an animated light follows too
-  shade_.set("uLightColor", scene_.light.color);
-  shade_.set("uEpsilon", secondaryRayEpsilon(scene_));  // it follows the scene's bounds
+  bindThesisShading(shade_);
+  if (fused_) bindThesisShading(*fused_);
   mixLightChanged();
 }
 
 uint64_t GpuRenderer::retireFinished() { return cull_.execute(true); }
+
+void GpuRenderer::readPrimaryHits(FrameResult& result) const {
+  result.primaryHits.reserve(rays_.elementCount());
+  for (const glm::vec4& h : rays_.read(kHitSurface))
+    result.primaryHits.push_back(h.x < kInfinity ? HitRecord{h.x, h.y, h.z, unpackIndex(h.w)}
+                                                 : HitRecord{kInfinity, 0.0f, 0.0f, kNoHit});
+}
+
+bool GpuRenderer::fusedPrimaryBounce(const CameraBasis& basis, int bounces, bool captureHits, FrameResult& result,
+                                     Clock::duration& excluded) {
+  // --hits reads the primary hits, which a later bounce's shading overwrites;
+  // --compact always asks for the bounce's rays gathered.
+  if (!fused_ || (captureHits && bounces > 1) || compact_ == Compaction::Always) return false;
+  setRaygenCamera(*fused_, basis);
+  fused_->set("uLastBounce", bounces == 1 ? 1 : 0);
+  fused_->set("uKeepHit", captureHits ? 1 : 0);
+  unfinished_->zero(1);
+  rays_.clearDepth(1.0f);
+  // After the last bounce only the colour and the counters are read (and the
+  // primary hits for --hits): the other surfaces are not written.
+  constexpr int kNone = InOutStream::kNoSurface;
+  rays_.setWriteSurfaces(bounces > 1 ? kAllSurfaces
+                                     : std::vector<int>{kNone, kNone, kNone, captureHits ? kHitSurface : kNone,
+                                                        kColorSurface, kThroughputSurface, kPendingSurface});
+  fused_->execute();
+  // A ray that needs more steps than one pass may run (the loop budget):
+  // the whole bounce runs again pass by pass, which is exact.
+  if (std::bit_cast<uint32_t>(unfinished_->read(1).at(0)) != 0) return false;
+  result.stats.rays += rays_.elementCount();
+  result.stats.passes += 1;
+  if (captureHits) {
+    glFinish();
+    const auto pause = Clock::now();
+    readPrimaryHits(result);
+    excluded += Clock::now() - pause;
+  }
+  return true;
+}
 
 FrameResult GpuRenderer::render(const CameraSpec& camera, int bounces, bool captureHits) {
   const CameraBasis basis = makeCameraBasis(camera, rays_.width(), rays_.height());
@@ -134,16 +189,22 @@ FrameResult GpuRenderer::render(const CameraSpec& camera, int bounces, bool capt
   Clock::duration excluded{};
   const auto start = Clock::now();
 
-  setRaygenCamera(raygen_, basis);
-  rays_.clearDepth(1.0f);
-  rays_.setWriteSurfaces(kAllSurfaces);
-  raygen_.execute();
+  int first = 1;  // the first bounce traced pass by pass
+  lastFrameFused_ = fusedPrimaryBounce(basis, bounces, captureHits, result, excluded);
+  if (lastFrameFused_) {
+    first = 2;
+  } else {
+    setRaygenCamera(raygen_, basis);
+    rays_.clearDepth(1.0f);
+    rays_.setWriteSurfaces(kAllSurfaces);
+    raygen_.execute();
+  }
 
   // Whitted and AO trace until no element has a ray left (see CpuRenderer).
   const bool thesis = shading_.mode == ShadingMode::Thesis;
   const int generations = thesis ? bounces : std::numeric_limits<int>::max();
   if (shading_.mode == ShadingMode::Whitted) mixShade_->set("uMaxDepth", bounces);
-  for (int bounce = 1; bounce <= generations; ++bounce) {
+  for (int bounce = first; bounce <= generations; ++bounce) {
     rays_.clearDepth(1.0f);
     const uint64_t active = elements - retireFinished();
     if (active == 0) break;
@@ -162,10 +223,7 @@ FrameResult GpuRenderer::render(const CameraSpec& camera, int bounces, bool capt
     if (bounce == 1 && captureHits) {
       glFinish();
       const auto pause = Clock::now();
-      result.primaryHits.reserve(elements);
-      for (const glm::vec4& h : rays_.read(kHitSurface))
-        result.primaryHits.push_back(h.x < kInfinity ? HitRecord{h.x, h.y, h.z, unpackIndex(h.w)}
-                                                     : HitRecord{kInfinity, 0.0f, 0.0f, kNoHit});
+      readPrimaryHits(result);
       excluded += Clock::now() - pause;
     }
 

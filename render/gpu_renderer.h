@@ -9,6 +9,8 @@
 #include "render/frame_result.h"
 #include "render/shading_config.h"
 #include "scenes/scene.h"
+#include <chrono>
+
 #include "stream/const_input_stream.h"
 #include "stream/inout_stream.h"
 #include "stream/storage_buffer.h"
@@ -37,6 +39,8 @@ class GpuRenderer {
   FrameResult render(const CameraSpec& camera, int bounces, bool captureHits);
 
   InOutStream& rays() { return rays_; }
+  // Whether the last frame's primary bounce ran as the structure's fused pass.
+  bool lastFrameFused() const { return lastFrameFused_; }
 
   // Bytes per pixel this renderer keeps beyond the ray stream the memory
   // check counts for every GL run (render/memory_check.h): the Whitted ray
@@ -49,7 +53,13 @@ class GpuRenderer {
 
  private:
   uint64_t retireFinished();
+  void bindThesisShading(StreamKernel& kernel);
+  void readPrimaryHits(FrameResult& result) const;
   void makeMixKernel();
+  // The traversal's fused primary bounce (GpuTraversal::fusedBounce), when it
+  // has one and it can serve this frame; false: run the bounce pass by pass.
+  bool fusedPrimaryBounce(const CameraBasis& basis, int bounces, bool captureHits, FrameResult& result,
+                          std::chrono::steady_clock::duration& excluded);
   void mixLightChanged();
 
   const Scene& scene_;
@@ -66,6 +76,11 @@ class GpuRenderer {
   std::unique_ptr<StreamKernel> mixShade_;
   Compaction compact_;
   std::unique_ptr<StreamCompaction> compaction_;  // unless --compact off
+  // The fused primary bounce and its count of rays it could not finish; only
+  // for structures that offer one, under thesis shading.
+  std::unique_ptr<StreamKernel> fused_;
+  std::unique_ptr<StorageBuffer> unfinished_;
+  bool lastFrameFused_ = false;
 };
 
 }  // namespace passtrace

@@ -99,6 +99,10 @@ ConstInputStream::ConstInputStream(std::span<const glm::vec4> texels, const std:
 ConstInputStream::~ConstInputStream() { glDeleteTextures(GLsizei(pages_.size()), pages_.data()); }
 
 std::string streamPagesDefine(std::initializer_list<const ConstInputStream*> streams) {
+  return streamPagesDefine(std::vector<const ConstInputStream*>(streams));
+}
+
+std::string streamPagesDefine(const std::vector<const ConstInputStream*>& streams) {
   uint32_t pages = 1;
   for (const ConstInputStream* s : streams) pages = std::max(pages, s->pageCount());
   return "STREAM_PAGES " + std::to_string(pages);

@@ -64,5 +64,6 @@ class ConstInputStream {
 // of them has (1 for data that fits one texture, so such kernels compile to
 // a single plain texelFetch).
 std::string streamPagesDefine(std::initializer_list<const ConstInputStream*> streams);
+std::string streamPagesDefine(const std::vector<const ConstInputStream*>& streams);
 
 }  // namespace passtrace

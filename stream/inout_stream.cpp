@@ -74,7 +74,7 @@ void InOutStream::disable() {
 void InOutStream::setWriteSurfaces(const std::vector<int>& surfaces) {
   if (surfaces == writeSurfaces_) return;
   std::vector<GLenum> buffers;
-  for (int s : surfaces) buffers.push_back(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(s));
+  for (int s : surfaces) buffers.push_back(s == kNoSurface ? GL_NONE : GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(s));
   glNamedFramebufferDrawBuffers(framebuffer_, static_cast<GLsizei>(buffers.size()), buffers.data());
   writeSurfaces_ = surfaces;
 }

@@ -36,7 +36,9 @@ class InOutStream {
   // Binds the framebuffer and viewport: kernels executed until disable() write here.
   void enable();
   void disable();
-  // Kernel output location k goes to surfaces[k].
+  // Kernel output location k goes to surfaces[k]; kNoSurface drops it
+  // (nothing is written for that output).
+  static constexpr int kNoSurface = -1;
   void setWriteSurfaces(const std::vector<int>& surfaces);
 
   // Kernels executed after enable() run only on the first `rows` rows (a

@@ -77,6 +77,7 @@ void StorageBuffer::upload(const std::vector<float>& data) {
 
 std::vector<float> StorageBuffer::read(uint64_t floats) const {
   std::vector<float> out(std::min(floats, floats_));
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // kernels' storage writes, visible to the read-back
   if (!out.empty()) glGetNamedBufferSubData(buffer_, 0, GLsizeiptr(out.size() * sizeof(float)), out.data());
   checkGlError("reading " + what_);
   return out;

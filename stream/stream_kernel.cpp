@@ -13,23 +13,22 @@ namespace passtrace {
 
 StreamKernel::StreamKernel(std::string name, const std::string& glslFile, Depth depth,
                            const std::vector<std::string>& defines)
-    : name_(std::move(name)), depth_(depth) {
-  program_ = linkProgram(name_, "fullscreen_quad.vert", glslFile, defines);
-  glCreateQueries(GL_SAMPLES_PASSED, 1, &query_);
-  glCreateVertexArrays(1, &vertexArray_);  // core profile draws need a VAO, even an empty one
-  checkGlError("creating kernel " + name_);
-}
+    : StreamKernel(std::move(name), glslFile, depth, Stage::Fragment, defines) {}
 
 StreamKernel::StreamKernel(std::string name, const std::string& glslFile, Stage stage,
                            const std::vector<std::string>& defines)
-    : name_(std::move(name)), depth_(Depth::Test), stage_(stage) {
+    : StreamKernel(std::move(name), glslFile, Depth::Test, stage, defines) {}
+
+StreamKernel::StreamKernel(std::string name, const std::string& glslFile, Depth depth, Stage stage,
+                           const std::vector<std::string>& defines)
+    : name_(std::move(name)), depth_(depth), stage_(stage) {
   if (stage_ == Stage::Fragment) {
     program_ = linkProgram(name_, "fullscreen_quad.vert", glslFile, defines);
-    glCreateVertexArrays(1, &vertexArray_);
+    glCreateQueries(GL_SAMPLES_PASSED, 1, &query_);  // execute(true)'s fragment count
+    glCreateVertexArrays(1, &vertexArray_);  // core profile draws need a VAO, even an empty one
   } else {
     program_ = linkComputeProgram(name_, glslFile, defines);
   }
-  glCreateQueries(GL_SAMPLES_PASSED, 1, &query_);
   checkGlError("creating kernel " + name_);
 }
 

@@ -74,6 +74,8 @@ class StreamKernel {
   void dispatch(int width, int height);
 
  private:
+  StreamKernel(std::string name, const std::string& glslFile, Depth depth, Stage stage,
+               const std::vector<std::string>& defines);
   GLint location(const char* uniform);
   void bindTexture(const char* sampler, GLuint texture);
 

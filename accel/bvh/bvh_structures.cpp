@@ -175,4 +175,12 @@ std::unique_ptr<GpuTraversal> makeOctantBvhStream(std::span<const Triangle> tris
   return std::make_unique<GpuOctantBvhTraversal>(build.sequences, std::move(build.stats), config);
 }
 
+std::unique_ptr<GpuTraversal> makeOctantBvhFusedStream(std::span<const Triangle> tris,
+                                                       const GpuTraversalConfig& config) {
+  OctantBuild build = buildOctantSequences(tris, config.build);
+  build.stats.name = "bvh-octant-fused";
+  return std::make_unique<GpuOctantBvhTraversal>(build.sequences, std::move(build.stats), config,
+                                                 GpuOctantBvhTraversal::Fused::Yes);
+}
+
 }  // namespace passtrace

@@ -39,6 +39,9 @@ std::unique_ptr<GpuTraversal> makeGsBvhStream(std::span<const Triangle> tris, co
 // bvh-octant: bvh-stack's tree (--bvh-builder) as eight octant-ordered sequences (accel/bvh/octant_sequences.h).
 std::unique_ptr<CpuAccelerator> makeOctantBvhCpu(std::span<const Triangle> tris, const AccelBuildConfig& config);
 std::unique_ptr<GpuTraversal> makeOctantBvhStream(std::span<const Triangle> tris, const GpuTraversalConfig& config);
+// bvh-octant-fused: bvh-octant whose primary bounce the renderer runs as one fused pass.
+std::unique_ptr<GpuTraversal> makeOctantBvhFusedStream(std::span<const Triangle> tris,
+                                                       const GpuTraversalConfig& config);
 
 // The two CPU forms for a tree built elsewhere (tests build trees by hand):
 // the sequence walk, and the recursive descent (holds a span of tris).

@@ -17,16 +17,22 @@ std::vector<glm::vec4> concatenate(const OctantSequences& sequences) {
 }  // namespace
 
 GpuOctantBvhTraversal::GpuOctantBvhTraversal(const OctantSequences& sequences, AccelStats stats,
-                                             const GpuTraversalConfig& config)
+                                             const GpuTraversalConfig& config, Fused fused)
     : sequenceSize_(sequences.sequences[0].texels.size()),
       sequences_(concatenate(sequences), "the eight octant BVH sequences", config.maxPageTexels),
       kernel_("bvh_octant_traverse", "bvh/bvh_octant_traverse.frag", StreamKernel::Depth::Test,
               {streamPagesDefine({&sequences_}), triangleTestDefine(config.build.triangleTest)}),
       stats_(std::move(stats)),
       loopLimit_(config.loopLimit) {
-  kernel_.bindInput("uSequences", sequences_);
-  kernel_.set("uSequenceSize", static_cast<uint32_t>(sequenceSize_));
-  kernel_.set("uLoopLimit", loopLimit_);
+  bindFused(kernel_);  // the traversal pass reads the same walk inputs
+  if (fused == Fused::Yes)
+    fused_ = FusedBounce{"bvh/bvh_octant_fused.frag", {triangleTestDefine(config.build.triangleTest)}, {&sequences_}};
+}
+
+void GpuOctantBvhTraversal::bindFused(StreamKernel& kernel) const {
+  kernel.bindInput("uSequences", sequences_);
+  kernel.set("uSequenceSize", static_cast<uint32_t>(sequenceSize_));
+  kernel.set("uLoopLimit", loopLimit_);
 }
 
 uint64_t GpuOctantBvhTraversal::trace(InOutStream& rays, uint64_t active, const std::function<uint64_t()>& retire) {

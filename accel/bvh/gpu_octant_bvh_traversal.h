@@ -1,7 +1,10 @@
 #pragma once
 // The octant-ordered escape-index BVH on the GPU: the eight sequences of
 // accel/bvh/octant_sequences.h in one ConstInputStream, walked by
-// kernels_glsl/bvh/bvh_octant_traverse.frag.
+// kernels_glsl/bvh/bvh_octant_traverse.frag; with Fused::Yes (bvh-octant-fused)
+// it also offers kernels_glsl/bvh/bvh_octant_fused.frag for a primary bounce.
+
+#include <optional>
 
 #include "accel/bvh/octant_sequences.h"
 #include "accel/gpu_traversal.h"
@@ -12,9 +15,13 @@ namespace passtrace {
 
 class GpuOctantBvhTraversal final : public GpuTraversal {
  public:
-  GpuOctantBvhTraversal(const OctantSequences& sequences, AccelStats stats, const GpuTraversalConfig& config);
+  enum class Fused { No, Yes };
+  GpuOctantBvhTraversal(const OctantSequences& sequences, AccelStats stats, const GpuTraversalConfig& config,
+                        Fused fused = Fused::No);
   uint64_t trace(InOutStream& rays, uint64_t active, const std::function<uint64_t()>& retire) override;
   AccelStats stats() const override { return stats_; }
+  const FusedBounce* fusedBounce() const override { return fused_ ? &*fused_ : nullptr; }
+  void bindFused(StreamKernel& kernel) const override;
 
  private:
   uint64_t sequenceSize_;
@@ -22,6 +29,7 @@ class GpuOctantBvhTraversal final : public GpuTraversal {
   StreamKernel kernel_;
   AccelStats stats_;
   int loopLimit_;
+  std::optional<FusedBounce> fused_;
 };
 
 }  // namespace passtrace
