@@ -11,6 +11,8 @@
 namespace passtrace {
 
 GpuTraversalConfig withPassStepLimit(GpuTraversalConfig config) {
+  const int most = passStepLimit(0);
+  config.onePassPerBounce = config.onePassPerBounce || config.loopLimit <= 0 || config.loopLimit >= most;
   config.loopLimit = passStepLimit(config.loopLimit);
   return config;
 }

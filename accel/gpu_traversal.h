@@ -76,11 +76,17 @@ struct GpuTraversalConfig {
   // --compact: whether the GPU renderer gathers a generation's live rays into
   // whole 4x4 blocks before tracing them (render/gpu_renderer.h); structures ignore it.
   Compaction compact = Compaction::Off;
+  // Whether the run asked for one pass per bounce (-l 0, or an -l the pass's
+  // budget bounds); set by withPassStepLimit. Only then does a structure offer
+  // its fused bounce (FusedBounce): at a smaller -l most rays would leave the
+  // fused pass unfinished, and the bounce would run again pass by pass.
+  bool onePassPerBounce = false;
 };
 
 // `config` with its loopLimit resolved for the current context: -l 0 made
 // the most a pass may run, any -l bounded by the driver's loop cap
-// (stream/shader_loop_budget.h). Structures are built with the result.
+// (stream/shader_loop_budget.h), and onePassPerBounce set where that is what
+// -l asked for. Structures are built with the result.
 GpuTraversalConfig withPassStepLimit(GpuTraversalConfig config);
 
 // Shared by the implementations: binds the ray surfaces a traversal kernel

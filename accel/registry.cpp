@@ -191,7 +191,7 @@ std::vector<Structure> makeRows() {
       // Issue 17 item 3, fewer passes per bounce: bvh-octant's walk with ray generation and shading in one pass.
       {.name = "bvh-octant-fused", .family = "bvh",
        .description = "bvh-octant on the stream path with a primary bounce in one pass: ray generation, the "
-                      "octant walk and thesis shading fused (other bounces and shadings pass by pass)",
+                      "octant walk and thesis shading fused, at -l 0 (other bounces, shadings and -l pass by pass)",
        .renderers = {Gpu}, .number = std::nullopt, .numberedOn = {},
        .stream = makeOctantBvhFusedStream, .mirror = makeOctantBvhCpu,
        .memory = {0, 1688}, .reads = {P::BvhBuilder}},  // bvh-octant's data (no CPU row)

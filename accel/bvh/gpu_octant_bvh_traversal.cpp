@@ -25,7 +25,7 @@ GpuOctantBvhTraversal::GpuOctantBvhTraversal(const OctantSequences& sequences, A
       stats_(std::move(stats)),
       loopLimit_(config.loopLimit) {
   bindFused(kernel_);  // the traversal pass reads the same walk inputs
-  if (fused == Fused::Yes)
+  if (fused == Fused::Yes && config.onePassPerBounce)
     fused_ = FusedBounce{"bvh/bvh_octant_fused.frag", {triangleTestDefine(config.build.triangleTest)}, {&sequences_}};
 }
 

@@ -4,7 +4,8 @@
 // image, per-pixel steps, the frame's counts and the primary hits. Checked
 // where the fused pass runs (-b 1 with and without --hits, -b 3), where a
 // loop limit too small for one pass sends the bounce back to the passes,
-// and where it does not apply (AO shading, --hits past one bounce).
+// and where it does not apply (AO shading, --hits past one bounce, an -l
+// below the pass's budget).
 
 #include <gtest/gtest.h>
 
@@ -51,8 +52,9 @@ struct Case {
   ShadingMode mode;
   int bounces;
   bool hits;
-  int loopLimit;  // 0: one pass per bounce
-  bool fused;     // whether the fused pass serves the primary bounce
+  int loopLimit;          // 0: one pass per bounce
+  bool onePassPerBounce;  // as -l 0 sets it; with a small loopLimit, as if the budget were that small
+  bool fused;             // whether the fused pass serves the primary bounce
 };
 
 void PrintTo(const Case& c, std::ostream* os) {
@@ -67,10 +69,11 @@ TEST_P(FusedBounce, LeavesWhatThePassesLeave) {
   const Scene scene = loadScene(c.scene);
   GpuTraversalConfig config;
   config.loopLimit = c.loopLimit;
+  config.onePassPerBounce = c.onePassPerBounce;
   config = withPassStepLimit(config);
   const auto fused = makeStreamStructure("bvh-octant-fused", scene.triangles, config);
   const auto passes = makeStreamStructure("bvh-octant", scene.triangles, config);
-  ASSERT_NE(fused->fusedBounce(), nullptr);
+  ASSERT_EQ(fused->fusedBounce() != nullptr, c.onePassPerBounce || c.loopLimit == 0);
   ASSERT_EQ(passes->fusedBounce(), nullptr);
   const Frame got = render(scene, *fused, 41, c.mode, c.bounces, c.hits);
   const Frame want = render(scene, *passes, 41, c.mode, c.bounces, c.hits);
@@ -82,17 +85,18 @@ TEST_P(FusedBounce, LeavesWhatThePassesLeave) {
 
 INSTANTIATE_TEST_SUITE_P(
     Frames, FusedBounce,
-    ::testing::Values(Case{"bunny", ShadingMode::Thesis, 1, false, 0, true},
-                      Case{"bunny", ShadingMode::Thesis, 1, true, 0, true},
-                      Case{"cornell", ShadingMode::Thesis, 1, true, 0, true},
-                      Case{"cornell", ShadingMode::Thesis, 3, false, 0, true},    // shadow and mirror rays follow
-                      Case{"cornell", ShadingMode::Thesis, 3, true, 0, false},    // hits would be shaded over
-                      Case{"cornell", ShadingMode::Thesis, 1, true, 3, false},    // rays left unfinished
-                      Case{"cornell", ShadingMode::Ao, 2, false, 0, false}),      // not thesis shading
+    ::testing::Values(Case{"bunny", ShadingMode::Thesis, 1, false, 0, false, true},
+                      Case{"bunny", ShadingMode::Thesis, 1, true, 0, false, true},
+                      Case{"cornell", ShadingMode::Thesis, 1, true, 0, false, true},
+                      Case{"cornell", ShadingMode::Thesis, 3, false, 0, false, true},  // shadow and mirror rays follow
+                      Case{"cornell", ShadingMode::Thesis, 3, true, 0, false, false},  // hits would be shaded over
+                      Case{"cornell", ShadingMode::Thesis, 1, true, 3, true, false},   // rays left unfinished
+                      Case{"cornell", ShadingMode::Thesis, 1, false, 3, false, false},  // -l 3: not offered
+                      Case{"cornell", ShadingMode::Ao, 2, false, 0, false, false}),    // not thesis shading
     [](const auto& info) {
       const Case& c = info.param;
       return std::string(c.scene) + "_" + shadingModeName(c.mode) + "_b" + std::to_string(c.bounces) +
-             (c.hits ? "_hits" : "") + "_l" + std::to_string(c.loopLimit);
+             (c.hits ? "_hits" : "") + "_l" + std::to_string(c.loopLimit) + (c.onePassPerBounce ? "_budget" : "");
     });
 
 }  // namespace
