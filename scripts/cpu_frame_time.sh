@@ -6,16 +6,18 @@
 #   scripts/cpu_frame_time.sh SCENE BOUNCES ROUNDS LABEL:BINARY:RENDERER:ACCEL ...
 # e.g. scripts/cpu_frame_time.sh robots 1 3 embree:build/passtrace:3:embree packet:build/passtrace:1:bvh8-packet
 # FRAMES=41 (default 11) times more frames per run: less noise from start-up.
+# EXTRA='--shading ao' adds options to every run (word-split).
 S=$1; N=$2; R=$3; shift 3
 F=${FRAMES:-11}
+read -r -a X <<<"${EXTRA:-}"
 tc() { perf stat -x, -e task-clock "$@" 2>&1 >/dev/null | grep task-clock | cut -d, -f1; }
 for i in $(seq "$R"); do
   for spec in "$@"; do
     IFS=: read -r l b r a <<<"$spec"
-    t1=$(tc "$b" -r "$r" -a "$a" -s "$S" -w 512 -b "$N" -m 1 --threads 1)
-    t11=$(tc "$b" -r "$r" -a "$a" -s "$S" -w 512 -b "$N" -m "$F" --threads 1)
+    t1=$(tc "$b" -r "$r" -a "$a" -s "$S" -w 512 -b "$N" -m 1 --threads 1 "${X[@]}")
+    t11=$(tc "$b" -r "$r" -a "$a" -s "$S" -w 512 -b "$N" -m "$F" --threads 1 "${X[@]}")
     echo "$l $(echo "($t11 - $t1)/($F - 1)" | bc -l)"
   done
-done | awk -v t="$S b$N" '{ if (!($1 in m) || $2 < m[$1]) m[$1] = $2 }
-  END { printf "%s: ", t; for (k in m) printf "%s=%.2f ms ", k, m[k];
+done | awk -v t="$S b$N" -v x="${EXTRA:+ $EXTRA}" '{ if (!($1 in m) || $2 < m[$1]) m[$1] = $2 }
+  END { printf "%s%s: ", t, x; for (k in m) printf "%s=%.2f ms ", k, m[k];
         if ("embree" in m) for (k in m) if (k != "embree") printf " embree/%s=%.2f", k, m["embree"] / m[k]; print "" }'
