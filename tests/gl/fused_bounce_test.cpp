@@ -14,6 +14,7 @@
 #include "accel/registry.h"
 #include "render/gpu_renderer.h"
 #include "scenes/scene_registry.h"
+#include "tests/frame_checks.h"
 #include "tests/gl_test_support.h"
 
 namespace passtrace {
@@ -30,21 +31,6 @@ Frame render(const Scene& scene, GpuTraversal& traversal, int size, ShadingMode 
   GpuRenderer renderer(scene, traversal, size, size + 3, 0, shading);  // not square: rows and columns differ
   FrameResult result = renderer.render(scene.camera, bounces, hits);
   return {std::move(result), renderer.lastFrameFused()};
-}
-
-void expectSameFrame(const FrameResult& got, const FrameResult& want) {
-  EXPECT_EQ(got.rgb, want.rgb);
-  EXPECT_EQ(got.steps, want.steps);
-  EXPECT_EQ(got.stats.rays, want.stats.rays);
-  EXPECT_EQ(got.stats.passes, want.stats.passes);
-  EXPECT_EQ(got.stats.steps, want.stats.steps);
-  EXPECT_EQ(got.stats.triangleTests, want.stats.triangleTests);
-  EXPECT_EQ(got.stats.maxStepsPerRay, want.stats.maxStepsPerRay);
-  ASSERT_EQ(got.primaryHits.size(), want.primaryHits.size());
-  for (size_t i = 0; i < got.primaryHits.size(); ++i) {
-    const HitRecord a = got.primaryHits[i], b = want.primaryHits[i];
-    ASSERT_TRUE(a.t == b.t && a.u == b.u && a.v == b.v && a.id == b.id) << "pixel " << i;
-  }
 }
 
 struct Case {
@@ -80,7 +66,7 @@ TEST_P(FusedBounce, LeavesWhatThePassesLeave) {
   EXPECT_EQ(got.fused, c.fused);
   EXPECT_FALSE(want.fused);
   EXPECT_GT(got.result.stats.steps, 0u);
-  expectSameFrame(got.result, want.result);
+  test::expectSameFrame(got.result, want.result);
 }
 
 INSTANTIATE_TEST_SUITE_P(
