@@ -46,7 +46,6 @@ GpuRenderer::GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width,
   cull_.bindInput("uState", rays_, kStateSurface);
   const char* samplers[] = {"uOrigin", "uDirection", "uState", "uHit", "uColor", "uThroughput", "uPending"};
   for (int s : kAllSurfaces) shade_.bindInput(samplers[s], rays_, s);
-  bindThesisShading(shade_);
   if (shading.mode != ShadingMode::Thesis) makeMixKernel();
   if (const FusedBounce* fused = traversal.fusedBounce(); fused && shading.mode == ShadingMode::Thesis) {
     std::vector<const ConstInputStream*> streams = fused->streams;
@@ -54,12 +53,12 @@ GpuRenderer::GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width,
     std::vector<std::string> defines = fused->defines;
     defines.push_back(streamPagesDefine(streams));
     fused_ = std::make_unique<StreamKernel>("fused bounce", fused->glslFile, StreamKernel::Depth::Test, defines);
-    bindThesisShading(*fused_);
     traversal.bindFused(*fused_);
     unfinished_ = std::make_unique<StorageBuffer>("the fused bounce's count of unfinished rays");
     unfinished_->reserve(1);
     fused_->bindStorage(0, *unfinished_);
   }
+  bindThesisShading();
   if (compact != Compaction::Off) compaction_ = std::make_unique<StreamCompaction>(rays_, kStateSurface);
 }
 
@@ -117,23 +116,26 @@ void GpuRenderer::mixLightChanged() {
   }
 }
 
-// The inputs of shade_thesis.glsl: shade.frag's, and a fused bounce's.
-void GpuRenderer::bindThesisShading(StreamKernel& kernel) {
-  kernel.bindInput("uTriangles", *triangles_);
-  kernel.bindInput("uMaterials", materials_);
-  kernel.set("uLightPosition", scene_.light.position);
-  kernel.set("uLightColor", scene_.light.color);
-  kernel.set("uBackground", scene_.background);
-  kernel.set("uAmbient", scene_.ambient);
-  kernel.set("uEpsilon", secondaryRayEpsilon(scene_));  // it follows the scene's bounds
+// The inputs of shade_thesis.glsl, in shade.frag and in a fused bounce.
+void GpuRenderer::bindThesisShading() {
+  const float epsilon = secondaryRayEpsilon(scene_);  // a pass over the triangles: once for both kernels
+  for (StreamKernel* kernel : {&shade_, fused_.get()}) {
+    if (!kernel) continue;
+    kernel->bindInput("uTriangles", *triangles_);
+    kernel->bindInput("uMaterials", materials_);
+    kernel->set("uLightPosition", scene_.light.position);
+    kernel->set("uLightColor", scene_.light.color);
+    kernel->set("uBackground", scene_.background);
+    kernel->set("uAmbient", scene_.ambient);
+    kernel->set("uEpsilon", epsilon);  // it follows the scene's bounds
+  }
 }
 
 void GpuRenderer::trianglesMoved() {
   // Same size, same pages: the shading kernel's STREAM_PAGES still holds.
   // An animated light follows too.
   triangles_ = std::make_unique<ConstInputStream>(triangleShadingTexels(scene_), "triangle shading data", maxPageTexels_);
-  bindThesisShading(shade_);
-  if (fused_) bindThesisShading(*fused_);
+  bindThesisShading();
   mixLightChanged();
 }
 

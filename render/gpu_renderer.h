@@ -3,14 +3,13 @@
 // each bounce traversal passes until the occlusion count says no ray is
 // active, then one shading pass that writes the next rays.
 
+#include <chrono>
 #include <memory>
 
 #include "accel/gpu_traversal.h"
 #include "render/frame_result.h"
 #include "render/shading_config.h"
 #include "scenes/scene.h"
-#include <chrono>
-
 #include "stream/const_input_stream.h"
 #include "stream/inout_stream.h"
 #include "stream/storage_buffer.h"
@@ -53,7 +52,7 @@ class GpuRenderer {
 
  private:
   uint64_t retireFinished();
-  void bindThesisShading(StreamKernel& kernel);
+  void bindThesisShading();
   void readPrimaryHits(FrameResult& result) const;
   void makeMixKernel();
   // The traversal's fused primary bounce (GpuTraversal::fusedBounce), when it
