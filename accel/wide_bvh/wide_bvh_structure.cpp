@@ -50,7 +50,7 @@ public:
   int packetSize() const override { return packets_ ? kWidePacketMax : 0; }
   void tracePacket(std::span<const Ray> rays, bool anyHit, std::span<Hit> hits,
                    std::span<RayStats> stats) const override {
-    traceWideBvhPacketAvx2(bvh_, rays, anyHit, hits, stats);
+    traceWideBvhPacketAvx2(bvh_, rays, anyHit, hits, stats, anyHit ? kAnyHitPackets : kClosestHitPackets);
   }
   std::string name() const override { return stats_.name; }
   AccelStats stats() const override { return stats_; }
@@ -111,7 +111,8 @@ std::optional<FilterStats> Bvh8Accelerator::traceBatch(const RayBatch& batch, st
         RayStats packetStats[kTile];
         for (int k = 0; k < m; ++k) rays[k] = batch.rays[members[shadow][k]];
         traceWideBvhPacketAvx2(bvh_, std::span<const Ray>(rays, size_t(m)), shadow != 0,
-                               std::span<Hit>(packetHits, size_t(m)), std::span<RayStats>(packetStats, size_t(m)));
+                               std::span<Hit>(packetHits, size_t(m)), std::span<RayStats>(packetStats, size_t(m)),
+                               shadow ? kAnyHitPackets : kClosestHitPackets);
         for (int k = 0; k < m; ++k) {
           const size_t i = members[shadow][k];
           hits[i] = packetHits[k];

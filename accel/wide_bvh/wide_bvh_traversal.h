@@ -25,9 +25,21 @@ Hit traverseWideBvhAvx2(const WideBvh& bvh, std::span<const Triangle> tris, cons
                         TriangleTest test, RayStats* stats);
 bool wideBvhAvx2Available();
 inline constexpr int kWidePacketMax = 64;  // rays per packet: one bit each in a 64-bit mask
+// How a packet leaves the shared stack (Embree's "hybrid" traversal): at an
+// inner node that at most `singleRayAt` of its rays still reach, each of them
+// walks the node's subtree alone. Few live rays carry the packet's per-node
+// bookkeeping for almost no shared work: incoherent AO packets soon thin out.
+struct PacketConfig {
+  int singleRayAt = 0;  // 0: never; kWidePacketMax: every ray alone from the root
+};
+// bvh8-packet's choice, measured with tests/measure/packet_handover.cpp (512²,
+// one thread, bunny, Kitchen, Robots): any-hit packets at 4 took 3-6 % less
+// time than never for AO rays and within 2 % for shadow rays; closest-hit
+// (primary) packets took 0-2 % more at 4, so they never hand over.
+inline constexpr PacketConfig kClosestHitPackets{0}, kAnyHitPackets{4};
 // Up to kWidePacketMax rays (Möller–Trumbore only) as one packet sharing a stack; hits
 // and stats have one entry per ray (stats are added to). AVX2 only, as above.
 void traceWideBvhPacketAvx2(const WideBvh& bvh, std::span<const Ray> rays, bool anyHit, std::span<Hit> hits,
-                            std::span<RayStats> stats);
+                            std::span<RayStats> stats, const PacketConfig& config = {});
 
 }  // namespace passtrace

@@ -105,7 +105,9 @@ WIDE_TARGET WIDE_INLINE uint32_t packTest4(const TrianglePack& k, const RayPre& 
 // when any live ray of the packet hits its box, and only by the rays that hit
 // it (per-entry ray masks). Each ray performs the same box and pack tests as
 // its single-ray traversal would at the nodes it visits, so its hit is the
-// same up to ties in t (the visiting order is the packet's).
+// same up to ties in t (the visiting order is the packet's). With
+// PacketConfig::singleRayAt, the last few rays at a node finish its subtree
+// alone (traverseSubtree): the same tests again, in single-ray order.
 template <typename Mask>
 struct PacketEntry {
   uint32_t ref;
@@ -114,7 +116,7 @@ struct PacketEntry {
 };
 
 template <typename Mask>
-WIDE_TARGET void tracePacket(const WideBvh& bvh, const Ray* rays, int count, bool anyHit, Hit* best,
+WIDE_TARGET void tracePacket(const WideBvh& bvh, const Ray* rays, int count, bool anyHit, int singleRayAt, Hit* best,
                              RayStats* stats) {
   constexpr bool kWide = sizeof(Mask) == 8;
   using Entry = PacketEntry<Mask>;
@@ -146,6 +148,18 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const Ray* rays, int count, boo
       if (entry.tNear < best[r].t) live |= Mask(1) << r;
     }
     if (!live) continue;
+    if (!wideIsLeaf(entry.ref) && __builtin_popcountll(live) <= singleRayAt) {
+      // Their other entries stay on the packet's stack: a subtree is walked once per ray either way.
+      for (Mask m = live; m;) {
+        const int r = __builtin_ctzll(m);
+        m &= m - 1;
+        traverseSubtree(bvh, {}, rays[r], pre[r], entry.ref, anyHit, TriangleTest::MollerTrumbore, best[r], steps[r],
+                        tests[r]);
+        if (anyHit && best[r].found()) alive &= ~(Mask(1) << r);
+      }
+      if (!alive) break;
+      continue;
+    }
     if (!wideIsLeaf(entry.ref)) {
       const WideBvhNode& node = bvh.nodes[entry.ref];
       // The rays' bits per child (64-ray packets: rays 0-31, then 32-63).
@@ -224,11 +238,12 @@ Hit traverseWideBvhAvx2(const WideBvh& bvh, std::span<const Triangle> tris, cons
 }
 
 void traceWideBvhPacketAvx2(const WideBvh& bvh, std::span<const Ray> rays, bool anyHit, std::span<Hit> hits,
-                            std::span<RayStats> stats) {
+                            std::span<RayStats> stats, const PacketConfig& config) {
+  const int count = int(rays.size()), singleRayAt = config.singleRayAt;
   if (rays.size() > 32)
-    tracePacket<uint64_t>(bvh, rays.data(), int(rays.size()), anyHit, hits.data(), stats.data());
+    tracePacket<uint64_t>(bvh, rays.data(), count, anyHit, singleRayAt, hits.data(), stats.data());
   else
-    tracePacket<uint32_t>(bvh, rays.data(), int(rays.size()), anyHit, hits.data(), stats.data());
+    tracePacket<uint32_t>(bvh, rays.data(), count, anyHit, singleRayAt, hits.data(), stats.data());
 }
 
 bool wideBvhAvx2Available() {
@@ -247,7 +262,8 @@ Hit traverseWideBvhAvx2(const WideBvh& bvh, std::span<const Triangle> tris, cons
   return traverseWideBvhScalar(bvh, tris, ray, anyHit, test, stats);
 }
 
-void traceWideBvhPacketAvx2(const WideBvh&, std::span<const Ray>, bool, std::span<Hit>, std::span<RayStats>) {}
+void traceWideBvhPacketAvx2(const WideBvh&, std::span<const Ray>, bool, std::span<Hit>, std::span<RayStats>,
+                            const PacketConfig&) {}
 
 bool wideBvhAvx2Available() { return false; }
 

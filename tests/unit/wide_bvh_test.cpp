@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "accel/brute_force.h"
@@ -141,26 +142,43 @@ TEST_P(WideBvhMeshTest, Avx2AndScalarTraversalsAgreeWithEachOtherAndBruteForce) 
   }
 }
 
-// Packets of 32 (incoherent rays: the hardest case for shared traversal)
-// find what each ray finds alone: the same nearest t, closest or any hit.
+// Packets of 64 (incoherent rays: the hardest case for shared traversal)
+// find what each ray finds alone: the same nearest t, closest or any hit;
+// also when the last few live rays leave the packet (singleRayAt 2), and when
+// every ray does at the root (kWidePacketMax: then the counts are the
+// single-ray traversal's too, so the hand-over is seen to happen).
 TEST_P(WideBvhMeshTest, PacketTraversalFindsWhatSingleRaysFind) {
   if (!wideBvhAvx2Available()) GTEST_SKIP() << "no AVX2";
   const auto& tris = GetParam().tris;
   const WideBvh bvh = collapseToWideBvh(buildBinnedSahBvh(tris), tris);
   const std::vector<Ray> rays = testmesh::rayMix(testmesh::boundsOf(tris), 150, 17);
-  for (bool anyHit : {false, true}) {
-    for (size_t begin = 0; begin < rays.size(); begin += kWidePacketMax) {
-      const size_t count = std::min<size_t>(kWidePacketMax, rays.size() - begin);
-      std::vector<Hit> hits(count);
-      std::vector<RayStats> stats(count);
-      traceWideBvhPacketAvx2(bvh, std::span<const Ray>(rays.data() + begin, count), anyHit, hits, stats);
-      for (size_t k = 0; k < count; ++k) {
-        const Ray& ray = rays[begin + k];
-        const Hit single = traverseWideBvhAvx2(bvh, tris, ray, anyHit, TriangleTest::MollerTrumbore, nullptr);
-        ASSERT_EQ(hits[k].found(), single.found()) << "ray " << begin + k;
-        if (!anyHit) EXPECT_EQ(hits[k].t, single.t) << "ray " << begin + k;
-        if (anyHit && hits[k].found()) EXPECT_LT(hits[k].t, ray.tMax) << "ray " << begin + k;
-        if (!tris.empty()) EXPECT_GT(stats[k].steps, 0u) << "ray " << begin + k;
+  for (int singleRayAt : {0, 2, kWidePacketMax}) {
+    for (bool anyHit : {false, true}) {
+      for (size_t begin = 0; begin < rays.size(); begin += kWidePacketMax) {
+        const size_t count = std::min<size_t>(kWidePacketMax, rays.size() - begin);
+        std::vector<Hit> hits(count);
+        std::vector<RayStats> stats(count);
+        traceWideBvhPacketAvx2(bvh, std::span<const Ray>(rays.data() + begin, count), anyHit, hits, stats,
+                               PacketConfig{singleRayAt});
+        for (size_t k = 0; k < count; ++k) {
+          const Ray& ray = rays[begin + k];
+          RayStats alone;
+          const Hit single = traverseWideBvhAvx2(bvh, tris, ray, anyHit, TriangleTest::MollerTrumbore, &alone);
+          const std::string where = "ray " + std::to_string(begin + k) + " singleRayAt " + std::to_string(singleRayAt);
+          ASSERT_EQ(hits[k].found(), single.found()) << where;
+          if (!anyHit) {
+            EXPECT_EQ(hits[k].t, single.t) << where;
+          } else if (hits[k].found()) {
+            EXPECT_LT(hits[k].t, ray.tMax) << where;
+          }
+          if (!tris.empty()) {
+            EXPECT_GT(stats[k].steps, 0u) << where;
+          }
+          if (singleRayAt == kWidePacketMax) {
+            EXPECT_EQ(stats[k].steps, alone.steps) << where;
+            EXPECT_EQ(stats[k].triangleTests, alone.triangleTests) << where;
+          }
+        }
       }
     }
   }
@@ -197,7 +215,9 @@ TEST_P(WideBvhMeshTest, PacketBatchesEqualBruteForce) {
       if (!active[i]) continue;
       const Hit brute = intersectBruteForce(tris, rays[i], anyHit[i] != 0, nullptr, TriangleTest::MollerTrumbore);
       ASSERT_EQ(hits[i].found(), brute.found()) << "element " << i << " primary " << primary;
-      if (!anyHit[i] && brute.found()) EXPECT_EQ(hits[i].t, brute.t) << "element " << i;
+      if (!anyHit[i] && brute.found()) {
+        EXPECT_EQ(hits[i].t, brute.t) << "element " << i;
+      }
     }
   }
 }
