@@ -4,6 +4,7 @@
 // wideBvhAvx2Available() first. No fused multiply-add: the results must equal
 // the scalar build's and geometry.h's to the bit.
 #include <cmath>
+#include <cstddef>
 #include <vector>
 
 #include "accel/wide_bvh/wide_bvh_traversal.h"
@@ -28,8 +29,7 @@ WIDE_TARGET WIDE_INLINE uint32_t packTest4(const TrianglePack& pack, const RayPr
 // The eight slab tests as vectors: entry distances and the all-ones lanes of the boxes hit.
 WIDE_TARGET WIDE_INLINE void boxTest8v(const WideBvhNode& node, const RayPre& pre, float tBest, __m256& near,
                                        __m256& hit) {
-  const float* mins[3] = {node.minX, node.minY, node.minZ};
-  const float* maxs[3] = {node.maxX, node.maxY, node.maxZ};
+  const float* bounds = reinterpret_cast<const float*>(&node);  // minX[8], maxX[8], minY[8], ... (wide_bvh.h)
   __m256 s[3], l[3];
   for (int k = 0; k < 3; ++k) {
     const __m256 o = _mm256_set1_ps(pre.o[k]), inv = _mm256_set1_ps(pre.inv[k]);
@@ -37,19 +37,19 @@ WIDE_TARGET WIDE_INLINE void boxTest8v(const WideBvhNode& node, const RayPre& pr
     // is monotonic, so (min - o) inv <= (max - o) inv for inv > 0 and the
     // scalar build's min/max of the two picks the same values (up to the sign
     // of a zero, which no comparison sees).
-    const bool positive = pre.inv[k] > 0.0f;
-    const __m256 lo = _mm256_load_ps(positive ? mins[k] : maxs[k]);
-    const __m256 hi = _mm256_load_ps(positive ? maxs[k] : mins[k]);
-    s[k] = _mm256_mul_ps(_mm256_sub_ps(lo, o), inv);
-    l[k] = _mm256_mul_ps(_mm256_sub_ps(hi, o), inv);
-    if (pre.parallel[k]) {
-      const __m256 lower = _mm256_load_ps(mins[k]), upper = _mm256_load_ps(maxs[k]);
+    s[k] = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(bounds + pre.nearAt[k]), o), inv);
+    l[k] = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(bounds + pre.farAt[k]), o), inv);
+  }
+  if (pre.anyParallel)  // rare: axis-parallel rays
+    for (int k = 0; k < 3; ++k) {
+      if (!pre.parallel[k]) continue;
+      const __m256 o = _mm256_set1_ps(pre.o[k]);
+      const __m256 lower = _mm256_load_ps(bounds + 16 * k), upper = _mm256_load_ps(bounds + 16 * k + 8);
       const __m256 inside = _mm256_and_ps(_mm256_cmp_ps(o, lower, _CMP_GE_OQ), _mm256_cmp_ps(o, upper, _CMP_LE_OQ));
       const __m256 inf = _mm256_set1_ps(kInfinity), minusInf = _mm256_set1_ps(-kInfinity);
       s[k] = _mm256_blendv_ps(inf, minusInf, inside);
       l[k] = _mm256_blendv_ps(minusInf, inf, inside);
     }
-  }
   near = _mm256_max_ps(_mm256_max_ps(s[0], s[1]), s[2]);
   const __m256 exit = _mm256_mul_ps(_mm256_min_ps(_mm256_min_ps(l[0], l[1]), l[2]), _mm256_set1_ps(kRobustExitScale));
   hit = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(near, exit, _CMP_LE_OQ),

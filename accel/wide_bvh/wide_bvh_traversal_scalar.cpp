@@ -1,6 +1,7 @@
 // The wide BVH's traversal in portable scalar code: each lane's operations
 // exactly as the AVX2 build performs them (wide_bvh_traversal_avx2.cpp).
 #include <cmath>
+#include <cstddef>
 #include <vector>
 
 #include "accel/wide_bvh/wide_bvh_traversal.h"
