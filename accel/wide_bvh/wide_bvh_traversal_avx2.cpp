@@ -210,6 +210,11 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const Ray* rays, int count, boo
       continue;
     }
     const uint32_t first = wideLeafFirst(entry.ref), packs = wideLeafPacks(entry.ref);
+    uint32_t real[4];  // each pack's real triangles (wideLeafPacks <= 4), counted once for all the rays
+    for (uint32_t p = 0; p < packs; ++p) {
+      real[p] = 0;
+      for (uint32_t id : bvh.packs[first + p].id) real[p] += id != kNoHit;
+    }
     for (Mask m = live; m;) {
       const int r = __builtin_ctzll(m);
       m &= m - 1;
@@ -217,7 +222,7 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const Ray* rays, int count, boo
         const TrianglePack& pack = bvh.packs[p];
         float t[4], u[4], v[4];
         uint32_t hit = packTest4(pack, pre[r], tBest[r], t, u, v);
-        for (int l = 0; l < kTrianglePackWidth; ++l) tests[r] += pack.id[l] != kNoHit;
+        tests[r] += real[p - first];
         while (hit) {
           const int lane = __builtin_ctz(hit);
           hit &= hit - 1;
