@@ -33,9 +33,10 @@ struct PacketConfig {
   int singleRayAt = 0;  // 0: never; kWidePacketMax: every ray alone from the root
 };
 // bvh8-packet's choice, measured with tests/measure/packet_handover.cpp (512²,
-// one thread, bunny, Kitchen, Robots): any-hit packets at 4 took 3-6 % less
-// time than never for AO rays and within 2 % for shadow rays; closest-hit
-// (primary) packets took 0-2 % more at 4, so they never hand over.
+// one thread, bunny, Kitchen, Robots): any-hit packets at 4 took 4-8 % less
+// time than never for AO rays on Kitchen and Robots (1.5 % more on the bunny)
+// and within 5 % either way for shadow rays; closest-hit (primary) packets
+// took 0.5-1 % more at 4, so they never hand over.
 inline constexpr PacketConfig kClosestHitPackets{0}, kAnyHitPackets{4};
 // Up to kWidePacketMax rays (Möller–Trumbore only) as one packet sharing a stack; hits
 // and stats have one entry per ray (stats are added to). AVX2 only, as above.
