@@ -17,6 +17,7 @@
 #include "accel/geometry/geometry.h"
 #include "accel/geometry/triangle_test.h"
 #include "accel/kd/kd_build_options.h"
+#include "accel/ray_packet.h"
 #include "accel/wide_bvh/bvh8_builder_kind.h"
 #include "accel/traversal_stats.h"
 
@@ -86,14 +87,16 @@ public:
   virtual bool tracesBatches() const { return false; }
   virtual std::optional<FilterStats> traceBatch(const RayBatch& batch, std::span<Hit> hits,
                                                 std::span<RayStats> stats) const;
-  // Packet tracing (bvh8-packet): the renderer cuts each generation into 8x4
-  // pixel tiles and hands over a tile's shadow rays, and in the primary
-  // generation its closest-hit rays, as packets of up to packetSize() rays
-  // read straight from its paths (no per-frame copies; other rays go one at a
-  // time through intersect). 0: no packets. Preferred to traceBatch when both
-  // are offered. hits and stats have one entry per ray; stats are added to.
+  // Packet tracing (bvh8-packet, Embree): the renderer cuts each generation
+  // into pixel tiles and hands over a tile's shadow rays, and in the primary
+  // generation its closest-hit rays, as packets of up to RayPacket::kMax rays
+  // written straight from its camera and paths (no per-frame copies; other
+  // rays go one at a time through intersect). packetSize(): the tracer's own
+  // packet width (it splits larger packets itself); 0: no packets. Preferred
+  // to traceBatch when both are offered. hits and stats have one entry per
+  // ray; stats are added to.
   virtual int packetSize() const { return 0; }
-  virtual void tracePacket(std::span<const Ray>, bool /*anyHit*/, std::span<Hit>, std::span<RayStats>) const {}
+  virtual void tracePacket(const RayPacket&, bool /*anyHit*/, std::span<Hit>, std::span<RayStats>) const {}
   virtual std::string name() const = 0;
   virtual AccelStats stats() const = 0;
 };

@@ -85,12 +85,13 @@ uint64_t CpuRenderer::traceGeneration(std::vector<PathState>& paths, std::vector
   return count;
 }
 
-// Packets of neighbouring pixels, read straight from the paths: primary rays
-// in 8x4 tiles, one packet of 32 each (the fastest of 4x2, 4x4 and 8x4 on
-// bunny, Kitchen and Robots; a common origin); later generations in 8x8 tiles,
-// the shadow rays as packets of up to 64 (a common end at the light; against
-// 16 and 32 per packet, 64 took the least CPU time on Robots); mirror rays one
-// at a time, where packets would mostly carry dead lanes.
+// Packets of neighbouring pixels, written straight from the camera and the
+// paths: primary rays in 8x4 tiles, one packet of 32 each (the fastest of
+// 4x2, 4x4 and 8x4 on bunny, Kitchen and Robots; a common origin); later
+// generations in 8x8 tiles, the shadow rays as one packet of up to 64 (a
+// common end at the light; against 16 and 32 per packet, 64 took the least
+// CPU time on Robots); mirror rays one at a time, where packets would mostly
+// carry dead lanes.
 //
 // A frame of primary rays only (`pixels` given) ends every path in its tile,
 // so the tile's path states live on the stack and only each pixel's colour and
@@ -100,10 +101,9 @@ uint64_t CpuRenderer::tracePackets(std::vector<PathState>& paths, std::vector<Hi
                                    int height, FrameResult* pixels) const {
   const bool primary = g.basis != nullptr;
   const int width = g.width;
-  constexpr size_t kTileW = 8, kTile = kTileW * 8, kClosestPacket = 32;
+  constexpr size_t kTileW = 8, kTile = kTileW * 8;
+  static_assert(kTile <= size_t(RayPacket::kMax), "a tile's shadow rays are one packet");
   const size_t kTileH = primary ? 4 : 8;  // 8x8 primary tiles measured up to 1.2x slower (noisy; not kept)
-  const size_t packetMax[2] = {std::min<size_t>(size_t(accelerator_.packetSize()), kClosestPacket),
-                               std::min<size_t>(size_t(accelerator_.packetSize()), kTile)};
   const size_t tilesX = (size_t(width) + kTileW - 1) / kTileW, tilesY = (size_t(height) + kTileH - 1) / kTileH;
   std::atomic<uint64_t> active{0};
   std::mutex statsLock;
@@ -112,13 +112,14 @@ uint64_t CpuRenderer::tracePackets(std::vector<PathState>& paths, std::vector<Hi
     FrameStats counts;  // with `pixels`: this work item's share of the frame's sums and maxima
     PathState tilePaths[kTile];
     Hit tileHits[kTile];
-    Ray rays[kTile];
+    RayPacket packets[2];  // the tile's closest-hit (primary) and shadow rays
     Hit packetHits[kTile];
     RayStats packetStats[kTile];
     for (size_t tile = begin; tile < end; ++tile) {
-      size_t pixel[kTile];  // the tile's pixels, row by row
-      uint8_t members[2][kTile];
-      size_t n = 0, sizes[2] = {0, 0};
+      size_t pixel[kTile];       // the tile's pixels, row by row
+      uint8_t members[2][kTile];  // each packet's pixels
+      size_t n = 0;
+      packets[0].count = packets[1].count = 0;
       const auto pathOf = [&](size_t j) -> PathState& { return pixels ? tilePaths[j] : paths[pixel[j]]; };
       const size_t x0 = (tile % tilesX) * kTileW, y0 = (tile / tilesX) * kTileH;
       float screenX[kTileW] = {}, dirX[kTileW], dirY[kTileW], dirZ[kTileW];
@@ -147,22 +148,24 @@ uint64_t CpuRenderer::tracePackets(std::vector<PathState>& paths, std::vector<Hi
             path.triangleTests += stats.triangleTests;
             continue;
           }
-          members[shadow][sizes[shadow]++] = uint8_t(j);
+          members[shadow][packets[shadow].count] = uint8_t(j);
+          packets[shadow].push(path.ray);
         }
       }
-      for (int shadow = 0; shadow < 2; ++shadow)
-        for (size_t first = 0; first < sizes[shadow]; first += packetMax[shadow]) {
-          const size_t m = std::min(packetMax[shadow], sizes[shadow] - first);
-          const uint8_t* index = members[shadow] + first;
-          for (size_t k = 0; k < m; ++k) rays[k] = pathOf(index[k]).ray, packetStats[k] = RayStats{};
-          accelerator_.tracePacket(std::span<const Ray>(rays, m), shadow != 0, std::span<Hit>(packetHits, m),
-                                   std::span<RayStats>(packetStats, m));
-          for (size_t k = 0; k < m; ++k) {
-            tileHits[index[k]] = packetHits[k];
-            pathOf(index[k]).steps += packetStats[k].steps;
-            pathOf(index[k]).triangleTests += packetStats[k].triangleTests;
-          }
+      for (int shadow = 0; shadow < 2; ++shadow) {
+        const RayPacket& packet = packets[shadow];
+        const size_t m = size_t(packet.count);
+        if (m == 0) continue;
+        std::fill_n(packetStats, m, RayStats{});
+        accelerator_.tracePacket(packet, shadow != 0, std::span<Hit>(packetHits, m),
+                                 std::span<RayStats>(packetStats, m));
+        for (size_t k = 0; k < m; ++k) {
+          const size_t j = members[shadow][k];
+          tileHits[j] = packetHits[k];
+          pathOf(j).steps += packetStats[k].steps;
+          pathOf(j).triangleTests += packetStats[k].triangleTests;
         }
+      }
       // Shaded while the tile's paths are still in the cache; the hit
       // triangles' shading data is fetched for the whole tile first, so that
       // its cache misses overlap instead of stalling one pixel at a time.

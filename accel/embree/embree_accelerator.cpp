@@ -184,17 +184,19 @@ public:
   int packetSize() const override { return packetWidth_; }
 
   // Packets of up to packetWidth_ rays through rtcIntersect16/8/4 and
-  // rtcOccluded16/8/4, one lane per ray; lanes past the packet's end and rays
-  // with nothing to hit (tMax <= 0 or NaN) are masked off. Same results as
-  // intersect() ray by ray (tests/unit/embree_packet_test.cpp).
-  void tracePacket(std::span<const Ray> rays, bool anyHit, std::span<Hit> hits,
+  // rtcOccluded16/8/4, one lane per ray (a larger packet goes as several);
+  // lanes past the packet's end and rays with nothing to hit (tMax <= 0 or
+  // NaN) are masked off. Same results as intersect() ray by ray
+  // (tests/unit/embree_packet_test.cpp).
+  void tracePacket(const RayPacket& rays, bool anyHit, std::span<Hit> hits,
                    std::span<RayStats> /*stats: Embree counts nothing*/) const override {
-    for (size_t first = 0; first < rays.size(); first += size_t(packetWidth_)) {
-      const size_t m = std::min(size_t(packetWidth_), rays.size() - first);
+    for (int first = 0; first < rays.count; first += packetWidth_) {
+      const int m = std::min(packetWidth_, rays.count - first);
+      const std::span<Hit> out = hits.subspan(size_t(first), size_t(m));
       switch (packetWidth_) {
-        case 16: tracePacketK<16>(rays.subspan(first, m), anyHit, hits.subspan(first, m)); break;
-        case 8: tracePacketK<8>(rays.subspan(first, m), anyHit, hits.subspan(first, m)); break;
-        default: tracePacketK<4>(rays.subspan(first, m), anyHit, hits.subspan(first, m)); break;
+        case 16: tracePacketK<16>(rays, first, m, anyHit, out); break;
+        case 8: tracePacketK<8>(rays, first, m, anyHit, out); break;
+        default: tracePacketK<4>(rays, first, m, anyHit, out); break;
       }
     }
   }
@@ -203,8 +205,9 @@ public:
   AccelStats stats() const override { return stats_; }
 
 private:
+  // Rays first .. first + n - 1 of the packet as one rtcIntersectK / rtcOccludedK.
   template <int K>
-  void tracePacketK(std::span<const Ray> rays, bool anyHit, std::span<Hit> hits) const {
+  void tracePacketK(const RayPacket& rays, int first, int n, bool anyHit, std::span<Hit> hits) const {
     using P = EmbreePacket<K>;
     alignas(64) int valid[K];
     alignas(64) typename P::RayHit rh;
@@ -212,20 +215,20 @@ private:
     bool any = false;
     for (int k = 0; k < K; ++k) {
       // Lanes past the end trace nothing; their fields still get finite values.
-      const bool in = size_t(k) < rays.size();
-      const Ray& ray = rays[in ? size_t(k) : 0];
-      const bool live = in && ray.tMax > 0.0f;
+      const int i = first + (k < n ? k : 0);
+      const float tMax = rays.tMax[i];
+      const bool live = k < n && tMax > 0.0f;
       valid[k] = live ? -1 : 0;
       any = any || live;
-      r.org_x[k] = ray.origin.x;
-      r.org_y[k] = ray.origin.y;
-      r.org_z[k] = ray.origin.z;
+      r.org_x[k] = rays.ox[i];
+      r.org_y[k] = rays.oy[i];
+      r.org_z[k] = rays.oz[i];
       r.tnear[k] = 0.0f;
-      r.dir_x[k] = ray.direction.x;
-      r.dir_y[k] = ray.direction.y;
-      r.dir_z[k] = ray.direction.z;
+      r.dir_x[k] = rays.dx[i];
+      r.dir_y[k] = rays.dy[i];
+      r.dir_z[k] = rays.dz[i];
       r.time[k] = 0.0f;
-      r.tfar[k] = !live ? 0.0f : std::isinf(ray.tMax) ? ray.tMax : std::nextafter(ray.tMax, 0.0f);
+      r.tfar[k] = !live ? 0.0f : std::isinf(tMax) ? tMax : std::nextafter(tMax, 0.0f);
       r.mask[k] = static_cast<unsigned>(-1);
       r.id[k] = 0;
       r.flags[k] = 0;
@@ -241,17 +244,18 @@ private:
       else
         P::intersect(valid, scene_.get(), &context, &rh);
     }
-    for (size_t k = 0; k < rays.size(); ++k) {
-      const Hit none{rays[k].tMax};
+    for (int k = 0; k < n; ++k) {
+      const float tMax = rays.tMax[first + k];
+      const Hit none{tMax};
       if (!valid[k]) {
-        hits[k] = none;
+        hits[size_t(k)] = none;
       } else if (anyHit) {
-        hits[k] = r.tfar[k] == -std::numeric_limits<float>::infinity() ? Hit{0.0f, 0.0f, 0.0f, 0u} : none;
+        hits[size_t(k)] = r.tfar[k] == -std::numeric_limits<float>::infinity() ? Hit{0.0f, 0.0f, 0.0f, 0u} : none;
       } else if (rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) {
-        hits[k] = none;
+        hits[size_t(k)] = none;
       } else {
-        const float tfar = std::isinf(rays[k].tMax) ? rays[k].tMax : std::nextafter(rays[k].tMax, 0.0f);
-        hits[k] = Hit{std::min(r.tfar[k], tfar), rh.hit.u[k], rh.hit.v[k], rh.hit.primID[k]};
+        const float tfar = std::isinf(tMax) ? tMax : std::nextafter(tMax, 0.0f);
+        hits[size_t(k)] = Hit{std::min(r.tfar[k], tfar), rh.hit.u[k], rh.hit.v[k], rh.hit.primID[k]};
       }
     }
   }

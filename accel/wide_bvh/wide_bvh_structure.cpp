@@ -48,9 +48,9 @@ public:
   std::optional<FilterStats> traceBatch(const RayBatch& batch, std::span<Hit> hits,
                                         std::span<RayStats> stats) const override;
   int packetSize() const override { return packets_ ? kWidePacketMax : 0; }
-  void tracePacket(std::span<const Ray> rays, bool anyHit, std::span<Hit> hits,
+  void tracePacket(const RayPacket& rays, bool anyHit, std::span<Hit> hits,
                    std::span<RayStats> stats) const override {
-    traceWideBvhPacketAvx2(bvh_, rays, anyHit, hits, stats, anyHit ? kAnyHitPackets : kClosestHitPackets);
+    traceWideBvhPacketAvx2(bvh_, rays, anyHit, hits, stats, packetConfigFor(anyHit));
   }
   std::string name() const override { return stats_.name; }
   AccelStats stats() const override { return stats_; }
@@ -106,13 +106,12 @@ std::optional<FilterStats> Bvh8Accelerator::traceBatch(const RayBatch& batch, st
       for (int shadow = 0; shadow < 2; ++shadow) {
         const int m = sizes[shadow];
         if (m == 0) continue;
-        Ray rays[kTile];
+        RayPacket rays;
         Hit packetHits[kTile];
         RayStats packetStats[kTile];
-        for (int k = 0; k < m; ++k) rays[k] = batch.rays[members[shadow][k]];
-        traceWideBvhPacketAvx2(bvh_, std::span<const Ray>(rays, size_t(m)), shadow != 0,
-                               std::span<Hit>(packetHits, size_t(m)), std::span<RayStats>(packetStats, size_t(m)),
-                               shadow ? kAnyHitPackets : kClosestHitPackets);
+        for (int k = 0; k < m; ++k) rays.push(batch.rays[members[shadow][k]]);
+        traceWideBvhPacketAvx2(bvh_, rays, shadow != 0, std::span<Hit>(packetHits, size_t(m)),
+                               std::span<RayStats>(packetStats, size_t(m)), packetConfigFor(shadow != 0));
         for (int k = 0; k < m; ++k) {
           const size_t i = members[shadow][k];
           hits[i] = packetHits[k];

@@ -13,6 +13,7 @@
 #include <span>
 
 #include "accel/geometry/triangle_test.h"
+#include "accel/ray_packet.h"
 #include "accel/traversal_stats.h"
 #include "accel/wide_bvh/wide_bvh.h"
 
@@ -24,7 +25,7 @@ Hit traverseWideBvhScalar(const WideBvh& bvh, std::span<const Triangle> tris, co
 Hit traverseWideBvhAvx2(const WideBvh& bvh, std::span<const Triangle> tris, const Ray& ray, bool anyHit,
                         TriangleTest test, RayStats* stats);
 bool wideBvhAvx2Available();
-inline constexpr int kWidePacketMax = 64;  // rays per packet: one bit each in a 64-bit mask
+inline constexpr int kWidePacketMax = RayPacket::kMax;  // rays per packet: one bit each in a 64-bit mask
 // How a packet leaves the shared stack (Embree's "hybrid" traversal): at an
 // inner node that at most `singleRayAt` of its rays still reach, each of them
 // walks the node's subtree alone. Few live rays carry the packet's per-node
@@ -38,9 +39,10 @@ struct PacketConfig {
 // and within 5 % either way for shadow rays; closest-hit (primary) packets
 // took 0.5-1 % more at 4, so they never hand over.
 inline constexpr PacketConfig kClosestHitPackets{0}, kAnyHitPackets{4};
-// Up to kWidePacketMax rays (Möller–Trumbore only) as one packet sharing a stack; hits
-// and stats have one entry per ray (stats are added to). AVX2 only, as above.
-void traceWideBvhPacketAvx2(const WideBvh& bvh, std::span<const Ray> rays, bool anyHit, std::span<Hit> hits,
+inline constexpr PacketConfig packetConfigFor(bool anyHit) { return anyHit ? kAnyHitPackets : kClosestHitPackets; }
+// A packet's rays (Möller–Trumbore only) sharing one stack; hits and stats
+// have one entry per ray (stats are added to). AVX2 only, as above.
+void traceWideBvhPacketAvx2(const WideBvh& bvh, const RayPacket& rays, bool anyHit, std::span<Hit> hits,
                             std::span<RayStats> stats, const PacketConfig& config = {});
 
 }  // namespace passtrace

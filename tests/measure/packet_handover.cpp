@@ -34,7 +34,7 @@ constexpr int kSettings[] = {0, 1, 2, 4, 8, 16, 64};
 struct PacketSet {
   std::string kind;
   bool anyHit = false;
-  std::vector<std::vector<Ray>> packets;
+  std::vector<RayPacket> packets;
   size_t rays = 0;
 };
 
@@ -50,10 +50,10 @@ std::vector<std::vector<size_t>> tiles(int width, int tileW, int tileH) {
   return out;
 }
 
-void add(PacketSet& set, std::vector<Ray>&& packet) {
+void add(PacketSet& set, const std::vector<Ray>& packet) {
   if (packet.empty()) return;
   set.rays += packet.size();
-  set.packets.push_back(std::move(packet));
+  set.packets.push_back(RayPacket::of(packet));
 }
 
 }  // namespace
@@ -94,7 +94,7 @@ int main(int argc, char** argv) try {
   for (const std::vector<size_t>& tile : tiles(width, 8, 4)) {
     std::vector<Ray> packet;
     for (size_t i : tile) packet.push_back(primary[i]);
-    add(sets[0], std::move(packet));
+    add(sets[0], packet);
   }
   for (const std::vector<size_t>& tile : tiles(width, 8, 8)) {
     std::vector<Ray> shadow;
@@ -108,8 +108,8 @@ int main(int argc, char** argv) try {
       for (int s = 0; s < aoSamples; ++s)
         ao[size_t(s)].push_back(Ray{origin, aoDirection(normal, aoRandom(uint32_t(i), uint32_t(s))), aoLength});
     }
-    add(sets[1], std::move(shadow));
-    for (std::vector<Ray>& packet : ao) add(sets[2], std::move(packet));
+    add(sets[1], shadow);
+    for (const std::vector<Ray>& packet : ao) add(sets[2], packet);
   }
 
   for (const PacketSet& set : sets) {
@@ -123,10 +123,11 @@ int main(int argc, char** argv) try {
       for (size_t s = 0; s < kSettingCount; ++s) {
         size_t hitCount = 0;
         const auto start = std::chrono::steady_clock::now();
-        for (const std::vector<Ray>& packet : set.packets) {
-          traceWideBvhPacketAvx2(bvh, packet, set.anyHit, std::span<Hit>(out.data(), packet.size()),
-                                 std::span<RayStats>(stats.data(), packet.size()), PacketConfig{kSettings[s]});
-          for (size_t k = 0; k < packet.size(); ++k) hitCount += out[k].found();
+        for (const RayPacket& packet : set.packets) {
+          const size_t m = size_t(packet.count);
+          traceWideBvhPacketAvx2(bvh, packet, set.anyHit, std::span<Hit>(out.data(), m),
+                                 std::span<RayStats>(stats.data(), m), PacketConfig{kSettings[s]});
+          for (size_t k = 0; k < m; ++k) hitCount += out[k].found();
         }
         best[s] = std::min(best[s], std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
         found[s] = hitCount;

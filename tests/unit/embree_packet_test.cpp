@@ -64,7 +64,7 @@ TEST_P(EmbreePacket, PacketsOfEveryFillEqualSingleRays) {
         const size_t m = std::min(n, rays.size() - first);
         std::vector<Hit> got(m);
         std::vector<RayStats> stats(m);
-        accel->tracePacket(std::span<const Ray>(rays).subspan(first, m), anyHit, got, stats);
+        accel->tracePacket(RayPacket::of(std::span<const Ray>(rays).subspan(first, m)), anyHit, got, stats);
         for (size_t k = 0; k < m; ++k) {
           const Hit want = accel->intersect(rays[first + k], anyHit, nullptr);
           wrong += !sameOrBothNaN(got[k], want);

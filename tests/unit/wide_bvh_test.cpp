@@ -158,8 +158,8 @@ TEST_P(WideBvhMeshTest, PacketTraversalFindsWhatSingleRaysFind) {
         const size_t count = std::min<size_t>(kWidePacketMax, rays.size() - begin);
         std::vector<Hit> hits(count);
         std::vector<RayStats> stats(count);
-        traceWideBvhPacketAvx2(bvh, std::span<const Ray>(rays.data() + begin, count), anyHit, hits, stats,
-                               PacketConfig{singleRayAt});
+        traceWideBvhPacketAvx2(bvh, RayPacket::of(std::span<const Ray>(rays.data() + begin, count)), anyHit, hits,
+                               stats, PacketConfig{singleRayAt});
         for (size_t k = 0; k < count; ++k) {
           const Ray& ray = rays[begin + k];
           RayStats alone;

@@ -142,7 +142,8 @@ TEST_P(WideSbvhMeshTest, TraversalsEqualBruteForce) {
       const size_t count = std::min<size_t>(32, rays.size() - begin);
       std::vector<Hit> hits(count);
       std::vector<RayStats> stats(count);
-      traceWideBvhPacketAvx2(bvh, std::span<const Ray>(rays.data() + begin, count), anyHit, hits, stats);
+      traceWideBvhPacketAvx2(bvh, RayPacket::of(std::span<const Ray>(rays.data() + begin, count)), anyHit, hits,
+                             stats);
       for (size_t k = 0; k < count; ++k) {
         const Hit brute = intersectBruteForce(tris, rays[begin + k], anyHit);
         ASSERT_EQ(hits[k].found(), brute.found()) << "ray " << begin + k;
