@@ -146,13 +146,29 @@ TEST_P(WideBvhMeshTest, Avx2AndScalarTraversalsAgreeWithEachOtherAndBruteForce) 
 // find what each ray finds alone: the same nearest t, closest or any hit;
 // also when the last few live rays leave the packet (singleRayAt 2), and when
 // every ray does at the root (kWidePacketMax: then the counts are the
-// single-ray traversal's too, so the hand-over is seen to happen).
+// single-ray traversal's too, so the hand-over is seen to happen, and the
+// packet's own ray set-up, preparePacket, is seen to equal prepare()'s).
+// There the mix gets axis-parallel rays through vertices as well: their
+// origins lie exactly on leaf boxes' planes, where the slab test reads the
+// parallel flags (with a packet's own order they would hit several triangles
+// at one vertex, ties in t broken either way).
 TEST_P(WideBvhMeshTest, PacketTraversalFindsWhatSingleRaysFind) {
   if (!wideBvhAvx2Available()) GTEST_SKIP() << "no AVX2";
   const auto& tris = GetParam().tris;
   const WideBvh bvh = collapseToWideBvh(buildBinnedSahBvh(tris), tris);
-  const std::vector<Ray> rays = testmesh::rayMix(testmesh::boundsOf(tris), 150, 17);
+  const Aabb bounds = testmesh::boundsOf(tris);
+  const std::vector<Ray> mix = testmesh::rayMix(bounds, 150, 17);
+  std::vector<Ray> withVertexRays = mix;
+  for (size_t i = 0; i < std::min<size_t>(tris.size(), 40); ++i)
+    for (int axis = 0; axis < 3; ++axis)
+      for (float sign : {1.0f, -1.0f}) {
+        Ray ray{tris[i].v1, glm::vec3(0.0f), kInfinity};
+        ray.origin[axis] = sign > 0.0f ? bounds.min[axis] - 1.0f : bounds.max[axis] + 1.0f;
+        ray.direction[axis] = sign;
+        withVertexRays.push_back(ray);
+      }
   for (int singleRayAt : {0, 2, kWidePacketMax}) {
+    const std::vector<Ray>& rays = singleRayAt == kWidePacketMax ? withVertexRays : mix;
     for (bool anyHit : {false, true}) {
       for (size_t begin = 0; begin < rays.size(); begin += kWidePacketMax) {
         const size_t count = std::min<size_t>(kWidePacketMax, rays.size() - begin);
