@@ -92,13 +92,8 @@ uint64_t CpuRenderer::traceGeneration(std::vector<PathState>& paths, std::vector
 // common end at the light; against 16 and 32 per packet, 64 took the least
 // CPU time on Robots); mirror rays one at a time, where packets would mostly
 // carry dead lanes.
-//
-// A frame of primary rays only (`pixels` given) ends every path in its tile,
-// so the tile's path states live on the stack and only each pixel's colour and
-// counts are written, instead of streaming every pixel's 112-byte path state
-// through memory and back (4 % of an Embree bunny frame at 512x512).
 uint64_t CpuRenderer::tracePackets(std::vector<PathState>& paths, std::vector<Hit>& hits, const Generation& g,
-                                   int height, FrameResult* pixels) const {
+                                   int height) const {
   const bool primary = g.basis != nullptr;
   const int width = g.width;
   constexpr size_t kTileW = 8, kTile = kTileW * 8;
@@ -106,11 +101,8 @@ uint64_t CpuRenderer::tracePackets(std::vector<PathState>& paths, std::vector<Hi
   const size_t kTileH = primary ? 4 : 8;  // 8x8 primary tiles measured up to 1.2x slower (noisy; not kept)
   const size_t tilesX = (size_t(width) + kTileW - 1) / kTileW, tilesY = (size_t(height) + kTileH - 1) / kTileH;
   std::atomic<uint64_t> active{0};
-  std::mutex statsLock;
   parallelFor(tilesX * tilesY, 256 / kTile, threads_, [&](size_t begin, size_t end) {
     uint64_t count = 0;
-    FrameStats counts;  // with `pixels`: this work item's share of the frame's sums and maxima
-    PathState tilePaths[kTile];
     Hit tileHits[kTile];
     RayPacket packets[2];  // the tile's closest-hit (primary) and shadow rays
     Hit packetHits[kTile];
@@ -120,7 +112,6 @@ uint64_t CpuRenderer::tracePackets(std::vector<PathState>& paths, std::vector<Hi
       uint8_t members[2][kTile];  // each packet's pixels
       size_t n = 0;
       packets[0].count = packets[1].count = 0;
-      const auto pathOf = [&](size_t j) -> PathState& { return pixels ? tilePaths[j] : paths[pixel[j]]; };
       const size_t x0 = (tile % tilesX) * kTileW, y0 = (tile / tilesX) * kTileH;
       float screenX[kTileW] = {}, dirX[kTileW], dirY[kTileW], dirZ[kTileW];
       if (primary)
@@ -131,8 +122,7 @@ uint64_t CpuRenderer::tracePackets(std::vector<PathState>& paths, std::vector<Hi
         for (size_t x = x0; x < std::min(x0 + kTileW, size_t(width)); ++x) {
           const size_t j = n++;
           pixel[j] = y * size_t(width) + x;
-          if (pixels) tilePaths[j] = PathState{};
-          PathState& path = pathOf(j);
+          PathState& path = paths[pixel[j]];
           if (primary) {  // field by field: a whole-Ray copy reloads it across its partial stores
             path.ray.origin = g.basis->eye;
             path.ray.direction = glm::vec3(dirX[x - x0], dirY[x - x0], dirZ[x - x0]);
@@ -160,10 +150,10 @@ uint64_t CpuRenderer::tracePackets(std::vector<PathState>& paths, std::vector<Hi
         accelerator_.tracePacket(packet, shadow != 0, std::span<Hit>(packetHits, m),
                                  std::span<RayStats>(packetStats, m));
         for (size_t k = 0; k < m; ++k) {
-          const size_t j = members[shadow][k];
-          tileHits[j] = packetHits[k];
-          pathOf(j).steps += packetStats[k].steps;
-          pathOf(j).triangleTests += packetStats[k].triangleTests;
+          PathState& path = paths[pixel[members[shadow][k]]];
+          tileHits[members[shadow][k]] = packetHits[k];
+          path.steps += packetStats[k].steps;
+          path.triangleTests += packetStats[k].triangleTests;
         }
       }
       // Shaded while the tile's paths are still in the cache; the hit
@@ -171,25 +161,71 @@ uint64_t CpuRenderer::tracePackets(std::vector<PathState>& paths, std::vector<Hi
       // its cache misses overlap instead of stalling one pixel at a time.
       for (size_t j = 0; j < n; ++j) prefetchShading(tileHits[j]);
       for (size_t j = 0; j < n; ++j) {
-        PathState& path = pathOf(j);
-        shade(g, pixel[j], tileHits[j], path);
+        shade(g, pixel[j], tileHits[j], paths[pixel[j]]);
         if (g.keepHits) hits[pixel[j]] = tileHits[j];
-        if (!pixels) continue;
-        float* rgb = pixels->rgb.data() + 3 * pixel[j];  // not copy_n: that called memmove per pixel
-        rgb[0] = path.color.r, rgb[1] = path.color.g, rgb[2] = path.color.b;
-        pixels->steps[pixel[j]] = float(path.steps);
-        counts.steps += path.steps;
-        counts.triangleTests += path.triangleTests;
-        counts.maxStepsPerRay = std::max<uint64_t>(counts.maxStepsPerRay, path.steps);
-        counts.maxTriangleTestsPerRay = std::max<uint64_t>(counts.maxTriangleTestsPerRay, path.triangleTests);
       }
     }
     active += count;
-    if (!pixels) return;
-    const std::lock_guard<std::mutex> hold(statsLock);
-    addPixelCounts(pixels->stats, counts);
   });
   return active;
+}
+
+// The speed runs' frame, primary rays only with the thesis's shading (-b 1):
+// every path ends at its first hit, so no path state is kept at all. Each
+// 8x4 tile's rays go from the camera into one packet, eight directions per
+// row at once, and the packet's hits straight to pixels (shadePrimaryOnly),
+// instead of a 112-byte path state per pixel written, copied into the
+// packet and read back.
+uint64_t CpuRenderer::tracePrimaryOnly(const CameraBasis& basis, int width, int height, std::vector<Hit>* hits,
+                                       FrameResult& pixels) const {
+  constexpr size_t kTileW = 8, kTileH = 4, kTile = kTileW * kTileH;
+  static_assert(kTile <= size_t(RayPacket::kMax), "a tile's rays are one packet");
+  const size_t tilesX = (size_t(width) + kTileW - 1) / kTileW, tilesY = (size_t(height) + kTileH - 1) / kTileH;
+  std::mutex statsLock;
+  parallelFor(tilesX * tilesY, 256 / kTile, threads_, [&](size_t begin, size_t end) {
+    FrameStats counts;  // this work item's share of the frame's sums and maxima
+    RayPacket packet;
+    Hit packetHits[kTile];
+    RayStats packetStats[kTile];
+    for (size_t tile = begin; tile < end; ++tile) {
+      const size_t x0 = (tile % tilesX) * kTileW, y0 = (tile / tilesX) * kTileH;
+      const size_t columns = std::min(kTileW, size_t(width) - x0), rows = std::min(kTileH, size_t(height) - y0);
+      float screenX[kTileW] = {}, dirX[kTileW], dirY[kTileW], dirZ[kTileW];
+      for (size_t x = 0; x < columns; ++x) screenX[x] = cameraScreenX(basis, int(x0 + x));
+      packet.count = int(rows * columns);
+      for (size_t y = 0; y < rows; ++y) {  // packet lanes row by row, as tracePackets orders them
+        cameraDirections(basis, screenX, cameraScreenY(basis, int(y0 + y)), dirX, dirY, dirZ);
+        float* const lane[] = {packet.ox, packet.oy, packet.oz, packet.dx, packet.dy, packet.dz, packet.tMax};
+        const float eye[] = {basis.eye.x, basis.eye.y, basis.eye.z};
+        for (int k = 0; k < 3; ++k) std::fill_n(lane[k] + y * columns, columns, eye[k]);
+        std::copy_n(dirX, columns, packet.dx + y * columns);
+        std::copy_n(dirY, columns, packet.dy + y * columns);
+        std::copy_n(dirZ, columns, packet.dz + y * columns);
+        std::fill_n(packet.tMax + y * columns, columns, kInfinity);
+      }
+      const size_t n = size_t(packet.count);
+      std::fill_n(packetStats, n, RayStats{});
+      accelerator_.tracePacket(packet, false, std::span<Hit>(packetHits, n), std::span<RayStats>(packetStats, n));
+      for (size_t k = 0; k < n; ++k) prefetchShading(packetHits[k]);  // their misses overlap
+      for (size_t y = 0, k = 0; y < rows; ++y)
+        for (size_t x = 0; x < columns; ++x, ++k) {
+          const size_t pixel = (y0 + y) * size_t(width) + x0 + x;
+          const glm::vec3 color = shadePrimaryOnly(scene_, epsilon_, packet.ray(int(k)), packetHits[k], table_);
+          float* rgb = pixels.rgb.data() + 3 * pixel;  // not copy_n: that called memmove per pixel
+          rgb[0] = color.r, rgb[1] = color.g, rgb[2] = color.b;
+          const RayStats& stats = packetStats[k];
+          pixels.steps[pixel] = float(stats.steps);
+          counts.steps += stats.steps;
+          counts.triangleTests += stats.triangleTests;
+          counts.maxStepsPerRay = std::max<uint64_t>(counts.maxStepsPerRay, stats.steps);
+          counts.maxTriangleTestsPerRay = std::max<uint64_t>(counts.maxTriangleTestsPerRay, stats.triangleTests);
+          if (hits) (*hits)[pixel] = packetHits[k];
+        }
+    }
+    const std::lock_guard<std::mutex> hold(statsLock);
+    addPixelCounts(pixels.stats, counts);
+  });
+  return uint64_t(width) * uint64_t(height);
 }
 
 uint64_t CpuRenderer::traceRays(std::vector<PathState>& paths, std::vector<Hit>& hits) const {
@@ -225,7 +261,7 @@ FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height,
   const int generations = thesis ? bounces : std::numeric_limits<int>::max();
   const bool packets = accelerator_.packetSize() > 0, batch = !packets && accelerator_.tracesBatches();
   // Packet rows shade a primary-only frame tile by tile and write its pixels
-  // straight out: no path state outlives a tile (tracePackets).
+  // straight out: no path state at all (tracePrimaryOnly).
   const bool tilePixels = packets && generations == 1;
   if (tilePixels) result.rgb.assign(3 * elements, 0.0f), result.steps.assign(elements, 0.0f);
   std::vector<PathState> paths(tilePixels ? 0 : elements);
@@ -252,8 +288,10 @@ FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height,
     // pending ray only when it has one), so a generation that traced nothing
     // was shaded for nothing and the loop ends as before.
     std::atomic<uint64_t> active{0};
-    if (packets)
-      active = tracePackets(paths, hits, g, height, tilePixels ? &result : nullptr);
+    if (tilePixels)
+      active = tracePrimaryOnly(basis, width, height, captureHits ? &hits : nullptr, result);
+    else if (packets)
+      active = tracePackets(paths, hits, g, height);
     else if (batch)
       active = traceGeneration(paths, hits, bounce == 1, width, height, result.stats, scratch);
     else

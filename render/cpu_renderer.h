@@ -54,10 +54,13 @@ class CpuRenderer {
   // One bounce through CpuAccelerator::tracePacket, 8x4 pixel tiles built
   // from the paths' rays (generated here in the primary generation), each
   // tile shaded right after; adds the stats to the paths; returns the rays traced.
-  // With `pixels` (a frame of primary rays only) the paths are the tile's own
-  // and `pixels` gets their colours, steps and counts; `paths` is not read.
   uint64_t tracePackets(std::vector<PathState>& paths, std::vector<Hit>& hits, const Generation& g,
-                        int height, FrameResult* pixels) const;
+                        int height) const;
+  // A whole frame of primary rays only (thesis shading, -b 1) through
+  // CpuAccelerator::tracePacket, without path states: `pixels` gets the
+  // colours, steps and counts, `hits` (if given) the hits; returns the rays traced.
+  uint64_t tracePrimaryOnly(const CameraBasis& basis, int width, int height, std::vector<Hit>* hits,
+                            FrameResult& pixels) const;
   // One bounce ray by ray through CpuAccelerator::intersect; returns the rays traced.
   uint64_t traceRays(std::vector<PathState>& paths, std::vector<Hit>& hits) const;
 

@@ -51,6 +51,12 @@ float secondaryRayEpsilon(const Scene& scene);
 void shadeElement(const Scene& scene, float epsilon, bool lastBounce, const Hit& hit, PathState& path,
                   std::span<const ShadingEntry> table = {});
 
+// A primary ray's colour when it is its path's only bounce (thesis shading,
+// -b 1): what shadeElement leaves in a fresh PathState on its last bounce,
+// bit for bit, without the path state.
+glm::vec3 shadePrimaryOnly(const Scene& scene, float epsilon, const Ray& ray, const Hit& hit,
+                           std::span<const ShadingEntry> table = {});
+
 // --shading whitted, as kernels_glsl/shade_whitted.frag. Order per nearest hit:
 // ambient; the pending rays pushed (refraction, then reflection on top);
 // then per light that can light the point (pending = diffuse + Phong
