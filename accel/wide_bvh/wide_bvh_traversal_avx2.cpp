@@ -200,7 +200,6 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const RayPacket& rays, bool any
   // best[r].t kept dense as well: which rays an entry still matters to is then
   // one vector compare per eight rays instead of a loop over the rays.
   alignas(32) float tBest[kWidePacketMax];
-  const int groups = (count + 7) / 8;
   preparePacket(rays, pre, tBest);
   for (int r = 0; r < count; ++r) best[r] = Hit{tBest[r]};
   if (bvh.nodes.empty()) return;
@@ -217,13 +216,19 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const RayPacket& rays, bool any
   stack[top++] = Entry{0u, -kInfinity, alive};
   while (top > 0) {
     const PacketEntry entry = stack[--top];
-    // Rays with a hit nearer than the entry distance of every ray here skip it.
+    // Rays with a hit nearer than the entry distance of every ray here skip
+    // it: compared eight at a time, only in the groups of eight that hold
+    // some of the entry's rays (deep in the tree an AO packet's entries hold few).
+    const Mask candidates = entry.rays & alive;
     Mask nearer = 0;
     const __m256 tNear = _mm256_set1_ps(entry.tNear);
-    for (int g = 0; g < groups; ++g)
-      nearer |= Mask(uint32_t(_mm256_movemask_ps(_mm256_cmp_ps(tNear, _mm256_load_ps(tBest + 8 * g), _CMP_LT_OQ))))
-                << (8 * g);
-    const Mask live = entry.rays & alive & nearer;
+    for (Mask left = candidates; left;) {
+      const int first = __builtin_ctzll(left) & ~7;
+      nearer |= Mask(uint32_t(_mm256_movemask_ps(_mm256_cmp_ps(tNear, _mm256_load_ps(tBest + first), _CMP_LT_OQ))))
+                << first;
+      left &= ~(Mask(0xFF) << first);
+    }
+    const Mask live = candidates & nearer;
     if (!live) continue;
     if (!wideIsLeaf(entry.ref) && __builtin_popcountll(live) <= singleRayAt) {
       // Their other entries stay on the packet's stack: a subtree is walked once per ray either way.
