@@ -5,6 +5,8 @@
 // straight into it: primary rays as eight camera directions per row at once,
 // instead of a Ray per pixel copied and transposed again by the tracer.
 
+#include <algorithm>
+#include <cstddef>
 #include <span>
 
 #include "accel/geometry/geometry.h"

@@ -195,9 +195,9 @@ uint64_t CpuRenderer::tracePrimaryOnly(const CameraBasis& basis, int width, int 
       packet.count = int(rows * columns);
       for (size_t y = 0; y < rows; ++y) {  // packet lanes row by row, as tracePackets orders them
         cameraDirections(basis, screenX, cameraScreenY(basis, int(y0 + y)), dirX, dirY, dirZ);
-        float* const lane[] = {packet.ox, packet.oy, packet.oz, packet.dx, packet.dy, packet.dz, packet.tMax};
-        const float eye[] = {basis.eye.x, basis.eye.y, basis.eye.z};
-        for (int k = 0; k < 3; ++k) std::fill_n(lane[k] + y * columns, columns, eye[k]);
+        std::fill_n(packet.ox + y * columns, columns, basis.eye.x);
+        std::fill_n(packet.oy + y * columns, columns, basis.eye.y);
+        std::fill_n(packet.oz + y * columns, columns, basis.eye.z);
         std::copy_n(dirX, columns, packet.dx + y * columns);
         std::copy_n(dirY, columns, packet.dy + y * columns);
         std::copy_n(dirZ, columns, packet.dz + y * columns);
