@@ -101,14 +101,6 @@ WIDE_TARGET WIDE_INLINE uint32_t packTest4(const TrianglePack& k, const RayPre& 
   return uint32_t(_mm_movemask_ps(hit));
 }
 
-// A packet of up to 32 (Mask = uint32_t) or 64 rays (uint64_t: measured
-// slower for 32-ray packets, so both are built) through one shared stack: a child is visited
-// when any live ray of the packet hits its box, and only by the rays that hit
-// it (per-entry ray masks). Each ray performs the same box and pack tests as
-// its single-ray traversal would at the nodes it visits, so its hit is the
-// same up to ties in t (the visiting order is the packet's). With
-// PacketConfig::singleRayAt, the last few rays at a node finish its subtree
-// alone (traverseSubtree): the same tests again, in single-ray order.
 // Eight rows of eight lanes to eight columns: out[r] holds lane r of every in[i].
 WIDE_TARGET WIDE_INLINE void transpose8(const __m256 (&in)[8], __m256 (&out)[8]) {
   __m256 pairs[8], quads[8];
@@ -182,6 +174,14 @@ WIDE_TARGET void preparePacket(const RayPacket& packet, RayPre* pre, float* tBes
   }
 }
 
+// A packet of up to 32 (Mask = uint32_t) or 64 rays (uint64_t: measured
+// slower for 32-ray packets, so both are built) through one shared stack: a child is visited
+// when any live ray of the packet hits its box, and only by the rays that hit
+// it (per-entry ray masks). Each ray performs the same box and pack tests as
+// its single-ray traversal would at the nodes it visits, so its hit is the
+// same up to ties in t (the visiting order is the packet's). With
+// PacketConfig::singleRayAt, the last few rays at a node finish its subtree
+// alone (traverseSubtree): the same tests again, in single-ray order.
 template <typename Mask>
 struct PacketEntry {
   uint32_t ref;
