@@ -9,6 +9,10 @@
 # e.g. scripts/primary_vs_bare.sh bunny 3 r3:build/passtrace:3:embree packet:build/passtrace:1:bvh8-packet
 # THREADS=2 and REPEATS=10 by default; BART scenes need PASSTRACE_BART_DIR.
 set -euo pipefail
+if [ $# -lt 3 ]; then
+  echo "usage: $0 SCENE ROUNDS LABEL:BINARY:RENDERER:ACCEL ..." >&2
+  exit 2
+fi
 S=$1; R=$2; shift 2
 T=${THREADS:-2}; M=${REPEATS:-10}
 bare=$(dirname "$0")/../build/tests/measure/measure_bare_embree
