@@ -19,42 +19,14 @@
 #include "accel/wide_bvh/binary_bvh.h"
 #include "accel/wide_bvh/wide_bvh.h"
 #include "accel/wide_bvh/wide_bvh_traversal.h"
-#include "render/ao_sampling.h"
-#include "render/camera.h"
-#include "render/shading.h"
 #include "scenes/scene_registry.h"
+#include "tests/measure/renderer_rays.h"
 
 namespace {
 
 using namespace passtrace;
 
 constexpr int kSettings[] = {0, 1, 2, 4, 8, 16, 64};
-
-// The rays of one kind, grouped into the packets the renderer would form.
-struct PacketSet {
-  std::string kind;
-  bool anyHit = false;
-  std::vector<RayPacket> packets;
-  size_t rays = 0;
-};
-
-// Pixel indices tile by tile (tileW x tileH, row by row inside a tile).
-std::vector<std::vector<size_t>> tiles(int width, int tileW, int tileH) {
-  std::vector<std::vector<size_t>> out;
-  for (int y0 = 0; y0 < width; y0 += tileH)
-    for (int x0 = 0; x0 < width; x0 += tileW) {
-      std::vector<size_t>& t = out.emplace_back();
-      for (int y = y0; y < std::min(y0 + tileH, width); ++y)
-        for (int x = x0; x < std::min(x0 + tileW, width); ++x) t.push_back(size_t(y) * size_t(width) + size_t(x));
-    }
-  return out;
-}
-
-void add(PacketSet& set, const std::vector<Ray>& packet) {
-  if (packet.empty()) return;
-  set.rays += packet.size();
-  set.packets.push_back(RayPacket::of(packet));
-}
 
 }  // namespace
 
@@ -71,46 +43,7 @@ int main(int argc, char** argv) try {
 
   const Scene scene = loadScene(argv[1]);
   const WideBvh bvh = collapseToWideBvh(buildBinnedSahBvh(scene.triangles), scene.triangles);
-  const CameraBasis basis = makeCameraBasis(scene.camera, width, width);
-  const size_t count = size_t(width) * size_t(width);
-  std::vector<Ray> primary(count);
-  std::vector<Hit> hits(count);
-  for (size_t i = 0; i < count; ++i) {
-    primary[i] = primaryRay(basis, int(i % size_t(width)), int(i / size_t(width)));
-    hits[i] = traverseWideBvhAvx2(bvh, scene.triangles, primary[i], false, TriangleTest::MollerTrumbore, nullptr);
-  }
-
-  // The hit point lifted off its surface along the normal facing the ray, as render/shading.cpp does.
-  const float epsilon = secondaryRayEpsilon(scene), aoLength = aoDistance(scene, ShadingConfig{});
-  auto lifted = [&](size_t i, glm::vec3& origin, glm::vec3& normal) {
-    if (!hits[i].found()) return false;
-    const glm::vec3 d = primary[i].direction;
-    const glm::vec3 g = glm::normalize(scene.triangles[hits[i].id].geometricNormal());
-    normal = glm::dot(g, d) > 0.0f ? -g : g;
-    origin = primary[i].origin + hits[i].t * d + epsilon * normal;
-    return true;
-  };
-  PacketSet sets[3] = {{"primary", false, {}, 0}, {"shadow", true, {}, 0}, {"ao", true, {}, 0}};
-  for (const std::vector<size_t>& tile : tiles(width, 8, 4)) {
-    std::vector<Ray> packet;
-    for (size_t i : tile) packet.push_back(primary[i]);
-    add(sets[0], packet);
-  }
-  for (const std::vector<size_t>& tile : tiles(width, 8, 8)) {
-    std::vector<Ray> shadow;
-    std::vector<std::vector<Ray>> ao{size_t(aoSamples)};
-    for (size_t i : tile) {
-      glm::vec3 origin, normal;
-      if (!lifted(i, origin, normal)) continue;
-      const glm::vec3 toLight = scene.light.position - origin;
-      const float distance = glm::length(toLight);
-      if (glm::dot(normal, toLight) > 0.0f) shadow.push_back(Ray{origin, toLight / distance, distance});
-      for (int s = 0; s < aoSamples; ++s)
-        ao[size_t(s)].push_back(Ray{origin, aoDirection(normal, aoRandom(uint32_t(i), uint32_t(s))), aoLength});
-    }
-    add(sets[1], shadow);
-    for (const std::vector<Ray>& packet : ao) add(sets[2], packet);
-  }
+  const std::vector<PacketSet> sets = rendererRays(scene, bvh, width, aoSamples);
 
   for (const PacketSet& set : sets) {
     constexpr size_t kSettingCount = std::size(kSettings);
