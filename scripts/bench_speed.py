@@ -11,6 +11,9 @@ shared machine):
               build/tests/measure/measure_machine_peak;
   baseline    bare Embree: rtcIntersect1 over the CPU renderer's primary rays
               on 2 threads and 1, no shading (measure_bare_embree);
+  ray kinds   traversal alone of the renderer's primary, shadow and AO rays,
+              one thread: bvh8-packet and bvh8 against Embree's single-ray
+              calls and its packets (measure_ray_kinds);
   runs        every registry row (`passtrace --list --json`, so rows added later
               are picked up) on each renderer it runs on, primary rays (-b 1),
               --threads 2; the CPU rows and Embree (-r 3) also on 1 thread on
@@ -88,6 +91,21 @@ def run_tool(cmd, env=None, timeout=600):
         return None, f"no JSON ({e})"
 
 
+def run_lines(cmd, env=None, timeout=900):
+    """Every JSON line of a measurement tool, or None (with the reason) when it fails."""
+    try:
+        proc = subprocess.run([str(c) for c in cmd], capture_output=True, text=True, timeout=timeout, env=env)
+    except (OSError, subprocess.TimeoutExpired) as e:
+        return None, str(e)
+    if proc.returncode != 0:
+        lines = proc.stderr.strip().splitlines()
+        return None, lines[-1] if lines else f"exit status {proc.returncode}"
+    try:
+        return [json.loads(line) for line in proc.stdout.strip().splitlines()], None
+    except ValueError as e:
+        return None, f"no JSON ({e})"
+
+
 def measure_baselines(binary, scenes, size, repeats, bart, bart_ok, bench):
     """{"machine": {threads: {...}}, "embree": {(scene, threads): {...}}, "errors": [...]}"""
     out = {"machine": {}, "embree": {}, "errors": []}
@@ -102,6 +120,19 @@ def measure_baselines(binary, scenes, size, repeats, bart, bart_ok, bench):
                 out["machine"][str(t)] = r
             else:
                 out["errors"].append(f"measure_machine_peak {t}: {err}")
+    kinds = measure_tool(binary, "measure_ray_kinds")
+    out["kinds"] = {}
+    if kinds is None:
+        out["errors"].append("measure_ray_kinds not built (cmake --build build --target measure_ray_kinds)")
+    for scene in scenes:
+        if kinds is None or (scene in BART and not bart_ok):
+            continue
+        bench.log(f"ray kinds, {scene} ...")
+        r, err = run_lines([kinds, scene, size, max(repeats, 5)], dict(os.environ, PASSTRACE_BART_DIR=str(bart)))
+        if r:
+            out["kinds"][scene] = r
+        else:
+            out["errors"].append(f"measure_ray_kinds {scene}: {err}")
     bare = measure_tool(binary, "measure_bare_embree")
     if bare is None:
         out["errors"].append("measure_bare_embree not built (needs Embree)")
@@ -197,6 +228,20 @@ def ratio_rows(by, embree, scenes):
     return rows
 
 
+KIND_PATHS = ["bvh8-packet", "bvh8", "embree-1", "embree-packets"]
+
+
+def kind_rows(kinds):
+    rows = []
+    for scene, lines in kinds.items():
+        for k in lines:
+            ms = k.get("ms", {})
+            rows.append([scene, k.get("kind"), k.get("rays")] + [num(ms.get(p)) for p in KIND_PATHS] +
+                        [num(ratio(ms.get("embree-1"), ms.get("bvh8-packet"))),
+                         num(ratio(ms.get("embree-packets"), ms.get("bvh8-packet")))])
+    return rows
+
+
 def threads_rows(by, embree, scene):
     rows = []
     cpu, name = best(by, scene, "cpu")
@@ -244,6 +289,16 @@ def write_report(out_dir, results, records, baselines, scenes):
     if scenes:
         lines += [f"### 2 threads against 1 ({scenes[0]}; goal ≥ 1.8×)", "",
                   md_table(["path", "2 threads", "1 thread", "ratio"], threads_rows(by, embree, scenes[0])), ""]
+    if baselines.get("kinds"):
+        lines += ["## Shadow and AO rays, traversal alone (one thread)", "",
+                  "`build/tests/measure/measure_ray_kinds SCENE SIZE REPEATS`: the CPU renderer's rays of each kind "
+                  "(primary in 8×4 tiles; from their hits shadow rays to the light and 4 AO rays per pixel, in 8×8 "
+                  "tiles), traced with no renderer around them: ms for all rays of the kind, minimum over the repeats. "
+                  "`embree-1` is rtcIntersect1 / rtcOccluded1 ray by ray, `embree-packets` rtcIntersect16 / "
+                  "rtcOccluded16 as `-r 3` calls them. Goal: shadow and diffuse (AO) rays ≥ 1.0× Embree.", "",
+                  md_table(["scene", "kind", "rays"] + [f"{p} ms" for p in KIND_PATHS] +
+                           ["embree-1 / bvh8-packet", "embree-packets / bvh8-packet"], kind_rows(baselines["kinds"])),
+                  ""]
     if by_thesis:
         lines += ["## Loop limit per stream row (item 3)", "",
                   f"Each stream row at the thesis's `-l {THESIS_LOOP_LIMIT}` (steps per ray per pass) and at "
