@@ -76,23 +76,8 @@ def measure_tool(binary, name):
     return path if os.access(path, os.X_OK) else None
 
 
-def run_tool(cmd, env=None, timeout=600):
-    """One JSON line from a measurement tool, or None (with the reason) when it fails."""
-    try:
-        proc = subprocess.run([str(c) for c in cmd], capture_output=True, text=True, timeout=timeout, env=env)
-    except (OSError, subprocess.TimeoutExpired) as e:
-        return None, str(e)
-    if proc.returncode != 0:
-        lines = proc.stderr.strip().splitlines()
-        return None, lines[-1] if lines else f"exit status {proc.returncode}"
-    try:
-        return json.loads(proc.stdout.strip().splitlines()[-1]), None
-    except (ValueError, IndexError) as e:
-        return None, f"no JSON ({e})"
-
-
 def run_lines(cmd, env=None, timeout=900):
-    """Every JSON line of a measurement tool, or None (with the reason) when it fails."""
+    """The JSON lines a measurement tool prints, or None (with the reason) when it fails."""
     try:
         proc = subprocess.run([str(c) for c in cmd], capture_output=True, text=True, timeout=timeout, env=env)
     except (OSError, subprocess.TimeoutExpired) as e:
@@ -101,9 +86,16 @@ def run_lines(cmd, env=None, timeout=900):
         lines = proc.stderr.strip().splitlines()
         return None, lines[-1] if lines else f"exit status {proc.returncode}"
     try:
-        return [json.loads(line) for line in proc.stdout.strip().splitlines()], None
+        found = [json.loads(line) for line in proc.stdout.splitlines() if line.startswith("{")]
     except ValueError as e:
         return None, f"no JSON ({e})"
+    return (found, None) if found else (None, "no JSON")
+
+
+def run_tool(cmd, env=None, timeout=600):
+    """The last JSON line of a measurement tool, or None (with the reason) when it fails."""
+    found, err = run_lines(cmd, env, timeout)
+    return (found[-1], None) if found else (None, err)
 
 
 def measure_baselines(binary, scenes, size, repeats, bart, bart_ok, bench):
