@@ -31,19 +31,13 @@ constexpr int kSettings[] = {0, 1, 2, 4, 8, 16, 64};
 }  // namespace
 
 int main(int argc, char** argv) try {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: %s SCENE [WIDTH=512] [REPEATS=7] [AO_SAMPLES=4]\n", argv[0]);
-    return 2;
-  }
-  const int width = argc > 2 ? std::stoi(argv[2]) : 512;
-  const int repeats = argc > 3 ? std::stoi(argv[3]) : 7;
-  const int aoSamples = argc > 4 ? std::stoi(argv[4]) : 4;
-  if (width <= 0 || repeats <= 0 || aoSamples <= 0) throw std::invalid_argument("WIDTH, REPEATS, AO_SAMPLES must be > 0");
+  const std::optional<RayToolArgs> args = parseRayToolArgs(argc, argv, 7);
+  if (!args) return 2;
   if (!wideBvhAvx2Available()) throw std::runtime_error("packets need AVX2");
 
-  const Scene scene = loadScene(argv[1]);
+  const Scene scene = loadScene(args->scene);
   const WideBvh bvh = collapseToWideBvh(buildBinnedSahBvh(scene.triangles), scene.triangles);
-  const std::vector<PacketSet> sets = rendererRays(scene, bvh, width, aoSamples);
+  const std::vector<PacketSet> sets = rendererRays(scene, bvh, args->width, args->aoSamples);
 
   for (const PacketSet& set : sets) {
     constexpr size_t kSettingCount = std::size(kSettings);
@@ -52,7 +46,7 @@ int main(int argc, char** argv) try {
     std::vector<Hit> out(kWidePacketMax);
     std::vector<RayStats> stats(kWidePacketMax);
     size_t found[kSettingCount] = {};
-    for (int r = 0; r < repeats; ++r)
+    for (int r = 0; r < args->repeats; ++r)
       for (size_t s = 0; s < kSettingCount; ++s) {
         size_t hitCount = 0;
         const auto start = std::chrono::steady_clock::now();
@@ -68,7 +62,7 @@ int main(int argc, char** argv) try {
     // Every setting must find the same rays blocked or hit; else the timing compares different work.
     for (size_t s = 1; s < kSettingCount; ++s)
       if (found[s] != found[0]) throw std::runtime_error(set.kind + ": settings disagree on the hits");
-    std::printf("{\"scene\": \"%s\", \"kind\": \"%s\", \"rays\": %zu, \"packets\": %zu, \"hits\": %zu, \"ms\": {", argv[1],
+    std::printf("{\"scene\": \"%s\", \"kind\": \"%s\", \"rays\": %zu, \"packets\": %zu, \"hits\": %zu, \"ms\": {", args->scene.c_str(),
                 set.kind.c_str(), set.rays, set.packets.size(), found[0]);
     for (size_t s = 0; s < kSettingCount; ++s)
       std::printf("%s\"%d\": %.2f", s ? ", " : "", kSettings[s], best[s]);

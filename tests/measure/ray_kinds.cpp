@@ -55,19 +55,14 @@ Path singleRays(std::string name, const CpuAccelerator& accel) {
 }  // namespace
 
 int main(int argc, char** argv) try {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: %s SCENE [WIDTH=512] [REPEATS=5] [AO_SAMPLES=4]\n", argv[0]);
-    return 2;
-  }
-  const int width = argc > 2 ? std::stoi(argv[2]) : 512;
-  const int repeats = argc > 3 ? std::stoi(argv[3]) : 5;
-  const int aoSamples = argc > 4 ? std::stoi(argv[4]) : 4;
-  if (width <= 0 || repeats <= 0 || aoSamples <= 0) throw std::invalid_argument("WIDTH, REPEATS, AO_SAMPLES must be > 0");
+  const std::optional<RayToolArgs> args = parseRayToolArgs(argc, argv, 5);
+  if (!args) return 2;
   if (!wideBvhAvx2Available()) throw std::runtime_error("bvh8-packet needs AVX2");
 
-  const Scene scene = loadScene(argv[1]);
+  const Scene scene = loadScene(args->scene);
   const std::vector<PacketSet> sets =
-      rendererRays(scene, collapseToWideBvh(buildBinnedSahBvh(scene.triangles), scene.triangles), width, aoSamples);
+      rendererRays(scene, collapseToWideBvh(buildBinnedSahBvh(scene.triangles), scene.triangles), args->width,
+                   args->aoSamples);
   const std::unique_ptr<CpuAccelerator> packet = makeCpuStructure("bvh8-packet", scene.triangles);
   const std::unique_ptr<CpuAccelerator> single = makeCpuStructure("bvh8", scene.triangles);
   std::vector<Path> paths = {packets("bvh8-packet", *packet), singleRays("bvh8", *single)};
@@ -83,7 +78,7 @@ int main(int argc, char** argv) try {
     std::vector<double> best(paths.size(), std::numeric_limits<double>::infinity());
     std::vector<size_t> found(paths.size());
     std::vector<Hit> hits(RayPacket::kMax);
-    for (int r = 0; r < repeats; ++r)
+    for (int r = 0; r < args->repeats; ++r)
       for (size_t p = 0; p < paths.size(); ++p) {
         size_t count = 0;
         const auto start = std::chrono::steady_clock::now();
@@ -97,7 +92,7 @@ int main(int argc, char** argv) try {
       }
     // passtrace's two paths run the same tests: they must agree, or the timing compares different work.
     if (found[0] != found[1]) throw std::runtime_error(set.kind + ": bvh8-packet and bvh8 disagree on the hits");
-    std::printf("{\"scene\": \"%s\", \"kind\": \"%s\", \"rays\": %zu, \"packets\": %zu, \"ms\": {", argv[1],
+    std::printf("{\"scene\": \"%s\", \"kind\": \"%s\", \"rays\": %zu, \"packets\": %zu, \"ms\": {", args->scene.c_str(),
                 set.kind.c_str(), set.rays, set.packets.size());
     for (size_t p = 0; p < paths.size(); ++p) std::printf("%s\"%s\": %.2f", p ? ", " : "", paths[p].name.c_str(), best[p]);
     std::printf("}, \"found\": {");

@@ -1,6 +1,10 @@
 #include "tests/measure/renderer_rays.h"
 
 #include <algorithm>
+#include <charconv>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
 
 #include "accel/wide_bvh/wide_bvh_traversal.h"
 #include "render/ao_sampling.h"
@@ -22,6 +26,15 @@ std::vector<std::vector<size_t>> tiles(int width, int tileW, int tileH) {
   return out;
 }
 
+int positive(const char* name, const char* text) {
+  int value = 0;
+  const char* end = text + std::strlen(text);
+  const auto [at, error] = std::from_chars(text, end, value);
+  if (error != std::errc() || at != end || value <= 0)
+    throw std::invalid_argument(std::string(name) + ": '" + text + "' is not a positive integer");
+  return value;
+}
+
 void add(PacketSet& set, const std::vector<Ray>& packet) {
   if (packet.empty()) return;
   set.rays += packet.size();
@@ -29,6 +42,19 @@ void add(PacketSet& set, const std::vector<Ray>& packet) {
 }
 
 }  // namespace
+
+std::optional<RayToolArgs> parseRayToolArgs(int argc, char** argv, int defaultRepeats) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: %s SCENE [WIDTH=512] [REPEATS=%d] [AO_SAMPLES=4]\n", argv[0], defaultRepeats);
+    return std::nullopt;
+  }
+  RayToolArgs args{argv[1]};
+  args.repeats = defaultRepeats;
+  if (argc > 2) args.width = positive("WIDTH", argv[2]);
+  if (argc > 3) args.repeats = positive("REPEATS", argv[3]);
+  if (argc > 4) args.aoSamples = positive("AO_SAMPLES", argv[4]);
+  return args;
+}
 
 std::vector<PacketSet> rendererRays(const Scene& scene, const WideBvh& bvh, int width, int aoSamples) {
   const CameraBasis basis = makeCameraBasis(scene.camera, width, width);

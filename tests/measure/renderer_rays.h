@@ -5,6 +5,7 @@
 // and length), each in packets of one 8x8 tile, one packet per AO sample.
 // Shared by the measurement tools that time traversal alone on them.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,5 +24,14 @@ struct PacketSet {
 
 // Needs AVX2 (wideBvhAvx2Available()): the primary hits come from traverseWideBvhAvx2.
 std::vector<PacketSet> rendererRays(const Scene& scene, const WideBvh& bvh, int width, int aoSamples);
+
+// The tools' arguments: SCENE [WIDTH=512] [REPEATS=defaultRepeats] [AO_SAMPLES=4].
+struct RayToolArgs {
+  std::string scene;
+  int width = 512, repeats = 0, aoSamples = 4;
+};
+// Prints the usage line and returns nullopt without SCENE; throws
+// std::invalid_argument naming an argument that is not a positive integer.
+std::optional<RayToolArgs> parseRayToolArgs(int argc, char** argv, int defaultRepeats);
 
 }  // namespace passtrace
