@@ -30,15 +30,25 @@ inline constexpr int kWidePacketMax = RayPacket::kMax;  // rays per packet: one 
 // inner node that at most `singleRayAt` of its rays still reach, each of them
 // walks the node's subtree alone. Few live rays carry the packet's per-node
 // bookkeeping for almost no shared work: incoherent AO packets soon thin out.
+// At a leaf, a group of eight consecutive rays of which at least
+// `acrossRaysAt` reach it tests the leaf one triangle against its eight rays
+// per instruction (the classic packet layout) instead of each ray against four
+// triangles: coherent rays share leaves, and then a pack costs a fraction of
+// its per-ray price. The hits and counts are the same either way.
 struct PacketConfig {
-  int singleRayAt = 0;  // 0: never; kWidePacketMax: every ray alone from the root
+  int singleRayAt = 0;   // 0: never; kWidePacketMax: every ray alone from the root
+  int acrossRaysAt = 0;  // 0: never; 1: every group with a live ray
 };
 // bvh8-packet's choice, measured with tests/measure/packet_handover.cpp (512²,
 // one thread, bunny, Kitchen, Robots): any-hit packets at 4 took 4-8 % less
 // time than never for AO rays on Kitchen and Robots (1.5 % more on the bunny)
 // and within 5 % either way for shadow rays; closest-hit (primary) packets
-// took 0.5-1 % more at 4, so they never hand over.
-inline constexpr PacketConfig kClosestHitPackets{0}, kAnyHitPackets{4};
+// took 0.5-1 % more at 4, so they never hand over. Leaves across rays from 4
+// of 8 (tests/measure/ray_kinds.cpp, 512², one thread; 3 to 7 measured, 4
+// among the best on every scene): Cornell's shadow rays 6.5 -> 3.8 ms, Robots'
+// 6.8 -> 4.4, Kitchen's 13.1 -> 11.4; primary rays 12-37 % faster on four
+// scenes; the bunny's rays 2-3 % slower (docs/bench-speed/NOTES.md).
+inline constexpr PacketConfig kClosestHitPackets{0, 4}, kAnyHitPackets{4, 4};
 inline constexpr PacketConfig packetConfigFor(bool anyHit) { return anyHit ? kAnyHitPackets : kClosestHitPackets; }
 // A packet's rays (Möller–Trumbore only) sharing one stack; hits and stats
 // have one entry per ray (stats are added to). AVX2 only, as above.

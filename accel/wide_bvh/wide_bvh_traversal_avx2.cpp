@@ -1,5 +1,6 @@
 // The wide BVH's traversal with AVX2: eight slab tests per instruction, four
-// Möller–Trumbore tests per instruction. Only the functions here carry the
+// Möller–Trumbore tests per instruction (in packets' leaves, where eight rays
+// arrive together, one triangle against eight rays). Only the functions here carry the
 // target attribute (the rest of the build stays portable); the caller checks
 // wideBvhAvx2Available() first. No fused multiply-add: the results must equal
 // the scalar build's and geometry.h's to the bit.
@@ -101,6 +102,39 @@ WIDE_TARGET WIDE_INLINE uint32_t packTest4(const TrianglePack& k, const RayPre& 
   return uint32_t(_mm_movemask_ps(hit));
 }
 
+// The same, for eight rays.
+WIDE_TARGET WIDE_INLINE __m256 dot(__m256 ax, __m256 ay, __m256 az, __m256 bx, __m256 by, __m256 bz) {
+  return _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(ax, bx), _mm256_mul_ps(ay, by)), _mm256_mul_ps(az, bz));
+}
+
+// One triangle of a pack against eight rays (the packet's columns): the same
+// operations as packTest4 for each pair of ray and triangle, so the same bits.
+WIDE_TARGET WIDE_INLINE __m256 triangleTest8(const TrianglePack& k, int i, const __m256 (&o)[3], const __m256 (&d)[3],
+                                             __m256 tBest, __m256& t, __m256& u, __m256& v) {
+  const __m256 e1x = _mm256_set1_ps(k.e1x[i]), e1y = _mm256_set1_ps(k.e1y[i]), e1z = _mm256_set1_ps(k.e1z[i]);
+  const __m256 e2x = _mm256_set1_ps(k.e2x[i]), e2y = _mm256_set1_ps(k.e2y[i]), e2z = _mm256_set1_ps(k.e2z[i]);
+  const __m256 px = _mm256_sub_ps(_mm256_mul_ps(d[1], e2z), _mm256_mul_ps(e2y, d[2]));
+  const __m256 py = _mm256_sub_ps(_mm256_mul_ps(d[2], e2x), _mm256_mul_ps(e2z, d[0]));
+  const __m256 pz = _mm256_sub_ps(_mm256_mul_ps(d[0], e2y), _mm256_mul_ps(e2x, d[1]));
+  const __m256 det = dot(px, py, pz, e1x, e1y, e1z);
+  const __m256 invDet = _mm256_div_ps(_mm256_set1_ps(1.0f), det);
+  const __m256 tx = _mm256_sub_ps(o[0], _mm256_set1_ps(k.v0x[i]));
+  const __m256 ty = _mm256_sub_ps(o[1], _mm256_set1_ps(k.v0y[i]));
+  const __m256 tz = _mm256_sub_ps(o[2], _mm256_set1_ps(k.v0z[i]));
+  u = _mm256_mul_ps(dot(px, py, pz, tx, ty, tz), invDet);
+  const __m256 qx = _mm256_sub_ps(_mm256_mul_ps(ty, e1z), _mm256_mul_ps(e1y, tz));
+  const __m256 qy = _mm256_sub_ps(_mm256_mul_ps(tz, e1x), _mm256_mul_ps(e1z, tx));
+  const __m256 qz = _mm256_sub_ps(_mm256_mul_ps(tx, e1y), _mm256_mul_ps(e1x, ty));
+  v = _mm256_mul_ps(dot(qx, qy, qz, d[0], d[1], d[2]), invDet);
+  t = _mm256_mul_ps(dot(qx, qy, qz, e2x, e2y, e2z), invDet);
+  const __m256 zero = _mm256_setzero_ps();
+  __m256 hit = _mm256_and_ps(_mm256_cmp_ps(det, zero, _CMP_NEQ_OQ), _mm256_cmp_ps(u, zero, _CMP_GE_OQ));
+  hit = _mm256_and_ps(hit, _mm256_cmp_ps(v, zero, _CMP_GE_OQ));
+  hit = _mm256_and_ps(hit, _mm256_cmp_ps(_mm256_add_ps(u, v), _mm256_set1_ps(1.0f), _CMP_LE_OQ));
+  hit = _mm256_and_ps(hit, _mm256_cmp_ps(t, zero, _CMP_GT_OQ));
+  return _mm256_and_ps(hit, _mm256_cmp_ps(t, tBest, _CMP_LT_OQ));
+}
+
 // Eight rows of eight lanes to eight columns: out[r] holds lane r of every in[i].
 WIDE_TARGET WIDE_INLINE void transpose8(const __m256 (&in)[8], __m256 (&out)[8]) {
   __m256 pairs[8], quads[8];
@@ -174,6 +208,46 @@ WIDE_TARGET void preparePacket(const RayPacket& packet, RayPre* pre, float* tBes
   }
 }
 
+// A leaf's triangles, one at a time, against the live rays (`lanes`) of the
+// packet's group g of eight. Each ray performs packTest4's operations on the
+// same triangles, so it finds the same nearest hit (the first in pack order
+// on ties, as there) and counts the same tests; an any-hit ray stops at the
+// first triangle it hits, where packTest4 would finish that pack. Returns the
+// any-hit rays that found a hit.
+WIDE_TARGET WIDE_INLINE uint32_t leafAcrossRays(const WideBvh& bvh, uint32_t first, uint32_t packs,
+                                                const uint32_t* real, const RayPacket& rays, int g, uint32_t lanes,
+                                                bool anyHit, float* tBest, Hit* best, uint32_t* tests) {
+  const int at = 8 * g;
+  const __m256 o[3] = {_mm256_load_ps(rays.ox + at), _mm256_load_ps(rays.oy + at), _mm256_load_ps(rays.oz + at)};
+  const __m256 d[3] = {_mm256_load_ps(rays.dx + at), _mm256_load_ps(rays.dy + at), _mm256_load_ps(rays.dz + at)};
+  __m256 tB = _mm256_load_ps(tBest + at);  // lanes outside `lanes` may be anything: they are never read back
+  const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+  __m256i* counts = reinterpret_cast<__m256i*>(tests + at);
+  uint32_t done = 0;
+  for (uint32_t p = 0; p < packs && done != lanes; ++p) {
+    const TrianglePack& pack = bvh.packs[first + p];
+    const __m256i looking = _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(lanes & ~done)), bit), bit);
+    _mm256_store_si256(counts, _mm256_add_epi32(_mm256_load_si256(counts),
+                                                _mm256_and_si256(looking, _mm256_set1_epi32(int(real[p])))));
+    for (int i = 0; i < kTrianglePackWidth; ++i) {
+      if (pack.id[i] == kNoHit) continue;
+      __m256 t, u, v;
+      const __m256 hitLanes = triangleTest8(pack, i, o, d, tB, t, u, v);
+      uint32_t hit = uint32_t(_mm256_movemask_ps(hitLanes)) & lanes & ~done;
+      if (!hit) continue;
+      alignas(32) float ts[8], us[8], vs[8];
+      _mm256_store_ps(ts, t), _mm256_store_ps(us, u), _mm256_store_ps(vs, v);
+      tB = _mm256_blendv_ps(tB, t, hitLanes);
+      if (anyHit) done |= hit;
+      for (; hit; hit &= hit - 1) {
+        const int lane = __builtin_ctz(hit);
+        best[at + lane] = Hit{ts[lane], us[lane], vs[lane], pack.id[i]}, tBest[at + lane] = ts[lane];
+      }
+    }
+  }
+  return done;
+}
+
 // A packet of up to 32 (Mask = uint32_t) or 64 rays (uint64_t: measured
 // slower for 32-ray packets, so both are built) through one shared stack: a child is visited
 // when any live ray of the packet hits its box, and only by the rays that hit
@@ -181,7 +255,9 @@ WIDE_TARGET void preparePacket(const RayPacket& packet, RayPre* pre, float* tBes
 // its single-ray traversal would at the nodes it visits, so its hit is the
 // same up to ties in t (the visiting order is the packet's). With
 // PacketConfig::singleRayAt, the last few rays at a node finish its subtree
-// alone (traverseSubtree): the same tests again, in single-ray order.
+// alone (traverseSubtree): the same tests again, in single-ray order. With
+// PacketConfig::acrossRaysAt, groups of eight test leaves across their rays
+// (leafAcrossRays): the same arithmetic, one triangle at a time.
 template <typename Mask>
 struct PacketEntry {
   uint32_t ref;
@@ -190,13 +266,14 @@ struct PacketEntry {
 };
 
 template <typename Mask>
-WIDE_TARGET void tracePacket(const WideBvh& bvh, const RayPacket& rays, bool anyHit, int singleRayAt, Hit* best,
-                             RayStats* stats) {
+WIDE_TARGET void tracePacket(const WideBvh& bvh, const RayPacket& rays, bool anyHit, const PacketConfig& config,
+                             Hit* best, RayStats* stats) {
   constexpr bool kWide = sizeof(Mask) == 8;
   using Entry = PacketEntry<Mask>;
   const int count = rays.count;
   RayPre pre[kWidePacketMax];
-  uint32_t steps[kWidePacketMax] = {}, tests[kWidePacketMax] = {};
+  uint32_t steps[kWidePacketMax] = {};
+  alignas(32) uint32_t tests[kWidePacketMax] = {};
   // best[r].t kept dense as well: which rays an entry still matters to is then
   // one vector compare per eight rays instead of a loop over the rays.
   alignas(32) float tBest[kWidePacketMax];
@@ -230,7 +307,7 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const RayPacket& rays, bool any
     }
     const Mask live = candidates & nearer;
     if (!live) continue;
-    if (!wideIsLeaf(entry.ref) && __builtin_popcountll(live) <= singleRayAt) {
+    if (!wideIsLeaf(entry.ref) && __builtin_popcountll(live) <= config.singleRayAt) {
       // Their other entries stay on the packet's stack: a subtree is walked once per ray either way.
       for (Mask m = live; m;) {
         const int r = __builtin_ctzll(m);
@@ -300,7 +377,22 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const RayPacket& rays, bool any
       real[p] = 0;
       for (uint32_t id : bvh.packs[first + p].id) real[p] += id != kNoHit;
     }
-    for (Mask m = live; m;) {
+    // Groups of eight rays with enough of them here test the leaf one triangle
+    // against eight rays; the others, each ray against a pack at a time.
+    Mask perRay = 0;
+    for (Mask left = live; left;) {
+      const int g = __builtin_ctzll(left) >> 3;
+      const Mask group = left & (Mask(0xFF) << (8 * g));
+      left &= ~group;
+      if (__builtin_popcountll(group) < config.acrossRaysAt) {
+        perRay |= group;
+        continue;
+      }
+      const uint32_t found = leafAcrossRays(bvh, first, packs, real, rays, g, uint32_t(uint64_t(group) >> (8 * g)),
+                                            anyHit, tBest, best, tests);
+      alive &= ~(Mask(found) << (8 * g));
+    }
+    for (Mask m = perRay; m;) {
       const int r = __builtin_ctzll(m);
       m &= m - 1;
       for (uint32_t p = first; p < first + packs; ++p) {
@@ -337,9 +429,9 @@ Hit traverseWideBvhAvx2(const WideBvh& bvh, std::span<const Triangle> tris, cons
 void traceWideBvhPacketAvx2(const WideBvh& bvh, const RayPacket& rays, bool anyHit, std::span<Hit> hits,
                             std::span<RayStats> stats, const PacketConfig& config) {
   if (rays.count > 32)
-    tracePacket<uint64_t>(bvh, rays, anyHit, config.singleRayAt, hits.data(), stats.data());
+    tracePacket<uint64_t>(bvh, rays, anyHit, config, hits.data(), stats.data());
   else
-    tracePacket<uint32_t>(bvh, rays, anyHit, config.singleRayAt, hits.data(), stats.data());
+    tracePacket<uint32_t>(bvh, rays, anyHit, config, hits.data(), stats.data());
 }
 
 bool wideBvhAvx2Available() {

@@ -167,7 +167,10 @@ TEST_P(WideBvhMeshTest, PacketTraversalFindsWhatSingleRaysFind) {
         ray.direction[axis] = sign;
         withVertexRays.push_back(ray);
       }
-  for (int singleRayAt : {0, 2, kWidePacketMax}) {
+  // acrossRaysAt 1: every leaf tested across the rays of each group that reaches it.
+  for (const PacketConfig config : {PacketConfig{0, 0}, PacketConfig{2, 0}, PacketConfig{kWidePacketMax, 0},
+                                    PacketConfig{0, 1}, PacketConfig{2, 1}, PacketConfig{0, 5}}) {
+    const int singleRayAt = config.singleRayAt;
     const std::vector<Ray>& rays = singleRayAt == kWidePacketMax ? withVertexRays : mix;
     for (bool anyHit : {false, true}) {
       for (size_t begin = 0; begin < rays.size(); begin += kWidePacketMax) {
@@ -175,12 +178,13 @@ TEST_P(WideBvhMeshTest, PacketTraversalFindsWhatSingleRaysFind) {
         std::vector<Hit> hits(count);
         std::vector<RayStats> stats(count);
         traceWideBvhPacketAvx2(bvh, RayPacket::of(std::span<const Ray>(rays.data() + begin, count)), anyHit, hits,
-                               stats, PacketConfig{singleRayAt});
+                               stats, config);
         for (size_t k = 0; k < count; ++k) {
           const Ray& ray = rays[begin + k];
           RayStats alone;
           const Hit single = traverseWideBvhAvx2(bvh, tris, ray, anyHit, TriangleTest::MollerTrumbore, &alone);
-          const std::string where = "ray " + std::to_string(begin + k) + " singleRayAt " + std::to_string(singleRayAt);
+          const std::string where = "ray " + std::to_string(begin + k) + " singleRayAt " + std::to_string(singleRayAt) +
+                                    " acrossRaysAt " + std::to_string(config.acrossRaysAt);
           ASSERT_EQ(hits[k].found(), single.found()) << where;
           if (!anyHit) {
             EXPECT_EQ(hits[k].t, single.t) << where;
@@ -198,6 +202,50 @@ TEST_P(WideBvhMeshTest, PacketTraversalFindsWhatSingleRaysFind) {
       }
     }
   }
+}
+
+// Leaves tested across rays (PacketConfig::acrossRaysAt) against the same
+// packets tested ray by ray: each ray does the same arithmetic on the same
+// triangles, so a closest hit is the same triangle, t, u and v to the bit, an
+// any-hit ray finds a hit exactly when it did, and every count is equal. On
+// coherent packets (an 8x8 tile of rays from one eye, where whole groups reach
+// a leaf) and on the incoherent mix, in groups from every live ray (1) up.
+TEST_P(WideBvhMeshTest, LeavesAcrossRaysFindAndCountWhatRaysAloneDo) {
+  if (!wideBvhAvx2Available()) GTEST_SKIP() << "no AVX2";
+  const auto& tris = GetParam().tris;
+  const WideBvh bvh = collapseToWideBvh(buildBinnedSahBvh(tris), tris);
+  const Aabb bounds = testmesh::boundsOf(tris);
+  const glm::vec3 centre = 0.5f * (bounds.min + bounds.max), size = bounds.max - bounds.min;
+  const glm::vec3 eye = centre + glm::vec3(0.2f, 0.3f, 2.0f) * glm::max(size.x, glm::max(size.y, size.z));
+  std::vector<Ray> rays = testmesh::rayMix(bounds, 100, 5);
+  for (int tile = 0; tile < 16; ++tile)
+    for (int i = 0; i < kWidePacketMax; ++i) {
+      const glm::vec3 target = bounds.min + size * glm::vec3((tile % 4 + (i % 8) / 8.0f) / 4.0f,
+                                                             (tile / 4 + (i / 8) / 8.0f) / 4.0f, 0.5f);
+      rays.push_back(Ray{eye, glm::normalize(target - eye), kInfinity});
+    }
+  for (int acrossRaysAt : {1, 4, 8})
+    for (bool anyHit : {false, true})
+      for (size_t begin = 0; begin < rays.size(); begin += kWidePacketMax) {
+        const size_t count = std::min<size_t>(kWidePacketMax, rays.size() - begin);
+        const RayPacket packet = RayPacket::of(std::span<const Ray>(rays.data() + begin, count));
+        std::vector<Hit> alone(count), across(count);
+        std::vector<RayStats> aloneStats(count), acrossStats(count);
+        traceWideBvhPacketAvx2(bvh, packet, anyHit, alone, aloneStats, PacketConfig{0, 0});
+        traceWideBvhPacketAvx2(bvh, packet, anyHit, across, acrossStats, PacketConfig{0, acrossRaysAt});
+        for (size_t k = 0; k < count; ++k) {
+          const std::string where = "ray " + std::to_string(begin + k) + " acrossRaysAt " + std::to_string(acrossRaysAt);
+          ASSERT_EQ(across[k].found(), alone[k].found()) << where;
+          if (!anyHit) {
+            EXPECT_EQ(across[k].t, alone[k].t) << where;
+            EXPECT_EQ(across[k].u, alone[k].u) << where;
+            EXPECT_EQ(across[k].v, alone[k].v) << where;
+            EXPECT_EQ(across[k].id, alone[k].id) << where;
+          }
+          EXPECT_EQ(acrossStats[k].steps, aloneStats[k].steps) << where;
+          EXPECT_EQ(acrossStats[k].triangleTests, aloneStats[k].triangleTests) << where;
+        }
+      }
 }
 
 // bvh8-packet's batch entry point on an image-shaped batch (a partly inactive
