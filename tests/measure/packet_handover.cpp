@@ -2,7 +2,8 @@
 // packet hands its last live rays over to single-ray traversal), on the rays
 // the CPU renderer traces: primary rays in 8x4 tiles, and from their hits
 // shadow rays to the light and AO rays (the renderer's directions and length),
-// each in packets of one 8x8 tile. One thread; the settings alternate within
+// each in packets of one 8x8 tile. Leaves as bvh8-packet tests them
+// (packetConfigFor(anyHit).acrossRaysAt). One thread; the settings alternate within
 // each repeat so that they share the machine's state; each cell is the
 // minimum over the repeats. Prints one JSON line per ray kind.
 //
@@ -53,7 +54,8 @@ int main(int argc, char** argv) try {
         for (const RayPacket& packet : set.packets) {
           const size_t m = size_t(packet.count);
           traceWideBvhPacketAvx2(bvh, packet, set.anyHit, std::span<Hit>(out.data(), m),
-                                 std::span<RayStats>(stats.data(), m), PacketConfig{kSettings[s]});
+                                 std::span<RayStats>(stats.data(), m),
+                                 PacketConfig{kSettings[s], packetConfigFor(set.anyHit).acrossRaysAt});
           for (size_t k = 0; k < m; ++k) hitCount += out[k].found();
         }
         best[s] = std::min(best[s], std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
