@@ -261,13 +261,13 @@ WIDE_TARGET WIDE_INLINE uint32_t leafAcrossRays(const WideBvh& bvh, uint32_t fir
 template <typename Mask>
 struct PacketEntry {
   uint32_t ref;
-  float tNear;  // the least entry distance of those rays
+  float tNear;  // the least entry distance of those rays (closest-hit packets; any-hit ones do not keep it)
   Mask rays;    // bit r: ray r hit this child's box
 };
 
-template <typename Mask>
-WIDE_TARGET void tracePacket(const WideBvh& bvh, const RayPacket& rays, bool anyHit, const PacketConfig& config,
-                             Hit* best, RayStats* stats) {
+template <typename Mask, bool kAnyHit>
+WIDE_TARGET void tracePacket(const WideBvh& bvh, const RayPacket& rays, const PacketConfig& config, Hit* best,
+                             RayStats* stats) {
   constexpr bool kWide = sizeof(Mask) == 8;
   using Entry = PacketEntry<Mask>;
   const int count = rays.count;
@@ -296,26 +296,32 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const RayPacket& rays, bool any
     // Rays with a hit nearer than the entry distance of every ray here skip
     // it: compared eight at a time, only in the groups of eight that hold
     // some of the entry's rays (deep in the tree an AO packet's entries hold few).
-    const Mask candidates = entry.rays & alive;
-    Mask nearer = 0;
-    const __m256 tNear = _mm256_set1_ps(entry.tNear);
-    for (Mask left = candidates; left;) {
-      const int first = __builtin_ctzll(left) & ~7;
-      nearer |= Mask(uint32_t(_mm256_movemask_ps(_mm256_cmp_ps(tNear, _mm256_load_ps(tBest + first), _CMP_LT_OQ))))
-                << first;
-      left &= ~(Mask(0xFF) << first);
+    // Not for any-hit rays: one keeps its tMax until it stops, and it entered
+    // this box before that (entry < tMax), so the compare would keep every one
+    // (shadow rays 4-12 % and AO rays 3-8 % faster without it and the entry
+    // distance's upkeep, docs/bench-speed/NOTES.md).
+    Mask live = entry.rays & alive;
+    if constexpr (!kAnyHit) {
+      Mask nearer = 0;
+      const __m256 tNear = _mm256_set1_ps(entry.tNear);
+      for (Mask left = live; left;) {
+        const int first = __builtin_ctzll(left) & ~7;
+        nearer |= Mask(uint32_t(_mm256_movemask_ps(_mm256_cmp_ps(tNear, _mm256_load_ps(tBest + first), _CMP_LT_OQ))))
+                  << first;
+        left &= ~(Mask(0xFF) << first);
+      }
+      live &= nearer;
     }
-    const Mask live = candidates & nearer;
     if (!live) continue;
     if (!wideIsLeaf(entry.ref) && __builtin_popcountll(live) <= config.singleRayAt) {
       // Their other entries stay on the packet's stack: a subtree is walked once per ray either way.
       for (Mask m = live; m;) {
         const int r = __builtin_ctzll(m);
         m &= m - 1;
-        traverseSubtree(bvh, {}, rays.ray(r), pre[r], entry.ref, anyHit, TriangleTest::MollerTrumbore, best[r],
+        traverseSubtree(bvh, {}, rays.ray(r), pre[r], entry.ref, kAnyHit, TriangleTest::MollerTrumbore, best[r],
                         steps[r], tests[r]);
         tBest[r] = best[r].t;
-        if (anyHit && best[r].found()) alive &= ~(Mask(1) << r);
+        if (kAnyHit && best[r].found()) alive &= ~(Mask(1) << r);
       }
       if (!alive) break;
       continue;
@@ -336,7 +342,7 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const RayPacket& rays, bool any
           childRays = _mm256_or_si256(childRays, bit);
         else
           childRaysHigh = _mm256_or_si256(childRaysHigh, bit);
-        childNear = _mm256_min_ps(childNear, _mm256_blendv_ps(childNear, near, hit));
+        if constexpr (!kAnyHit) childNear = _mm256_min_ps(childNear, _mm256_blendv_ps(childNear, near, hit));
       }
       alignas(32) uint32_t raysLow[8], raysHigh[8] = {};
       alignas(32) float nearOf[8];
@@ -357,7 +363,7 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const RayPacket& rays, bool any
         if constexpr (kWide) raysOf |= Mask(raysHigh[lane]) << 32;
         if (!raysOf) continue;
         Entry e{node.child[lane], nearOf[lane], raysOf};
-        if (anyHit) {
+        if constexpr (kAnyHit) {
           stack[top++] = e;
           continue;
         }
@@ -389,7 +395,7 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const RayPacket& rays, bool any
         continue;
       }
       const uint32_t found = leafAcrossRays(bvh, first, packs, real, rays, g, uint32_t(uint64_t(group) >> (8 * g)),
-                                            anyHit, tBest, best, tests);
+                                            kAnyHit, tBest, best, tests);
       alive &= ~(Mask(found) << (8 * g));
     }
     for (Mask m = perRay; m;) {
@@ -405,7 +411,7 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const RayPacket& rays, bool any
           hit &= hit - 1;
           if (t[lane] < tBest[r]) best[r] = Hit{t[lane], u[lane], v[lane], pack.id[lane]}, tBest[r] = t[lane];
         }
-        if (anyHit && best[r].found()) {
+        if (kAnyHit && best[r].found()) {
           alive &= ~(Mask(1) << r);
           break;
         }
@@ -429,9 +435,9 @@ Hit traverseWideBvhAvx2(const WideBvh& bvh, std::span<const Triangle> tris, cons
 void traceWideBvhPacketAvx2(const WideBvh& bvh, const RayPacket& rays, bool anyHit, std::span<Hit> hits,
                             std::span<RayStats> stats, const PacketConfig& config) {
   if (rays.count > 32)
-    tracePacket<uint64_t>(bvh, rays, anyHit, config, hits.data(), stats.data());
+    (anyHit ? tracePacket<uint64_t, true> : tracePacket<uint64_t, false>)(bvh, rays, config, hits.data(), stats.data());
   else
-    tracePacket<uint32_t>(bvh, rays, anyHit, config, hits.data(), stats.data());
+    (anyHit ? tracePacket<uint32_t, true> : tracePacket<uint32_t, false>)(bvh, rays, config, hits.data(), stats.data());
 }
 
 bool wideBvhAvx2Available() {
