@@ -45,9 +45,10 @@ struct PacketConfig {
 // and within 5 % either way for shadow rays; closest-hit (primary) packets
 // took 0.5-1 % more at 4, so they never hand over. Leaves across rays from 4
 // of 8 (tests/measure/ray_kinds.cpp, 512², one thread; 3 to 7 measured, 4
-// among the best on every scene): Cornell's shadow rays 6.5 -> 3.8 ms, Robots'
-// 6.8 -> 4.4, Kitchen's 13.1 -> 11.4; primary rays 12-37 % faster on four
-// scenes; the bunny's rays 2-3 % slower (docs/bench-speed/NOTES.md).
+// among the best on every scene; measured before any-hit packets lost their
+// entry-distance cull): Cornell's shadow rays 6.8 -> 3.9 ms, Robots' 6.7 ->
+// 5.6, Kitchen's 13.1 -> 11.1; primary rays 13-35 % faster on four scenes; the
+// bunny's rays 2-3 % slower (docs/bench-speed/NOTES.md, eighth session).
 inline constexpr PacketConfig kClosestHitPackets{0, 4}, kAnyHitPackets{4, 4};
 inline constexpr PacketConfig packetConfigFor(bool anyHit) { return anyHit ? kAnyHitPackets : kClosestHitPackets; }
 // A packet's rays (Möller–Trumbore only) sharing one stack; hits and stats

@@ -214,14 +214,20 @@ WIDE_TARGET void preparePacket(const RayPacket& packet, RayPre* pre, float* tBes
 // on ties, as there) and counts the same tests; an any-hit ray stops at the
 // first triangle it hits, where packTest4 would finish that pack. Returns the
 // any-hit rays that found a hit.
+template <bool kAnyHit>
 WIDE_TARGET WIDE_INLINE uint32_t leafAcrossRays(const WideBvh& bvh, uint32_t first, uint32_t packs,
                                                 const uint32_t* real, const RayPacket& rays, int g, uint32_t lanes,
-                                                bool anyHit, float* tBest, Hit* best, uint32_t* tests) {
+                                                float* tBest, Hit* best, uint32_t* tests) {
   const int at = 8 * g;
-  const __m256 o[3] = {_mm256_load_ps(rays.ox + at), _mm256_load_ps(rays.oy + at), _mm256_load_ps(rays.oz + at)};
-  const __m256 d[3] = {_mm256_load_ps(rays.dx + at), _mm256_load_ps(rays.dy + at), _mm256_load_ps(rays.dz + at)};
-  __m256 tB = _mm256_load_ps(tBest + at);  // lanes outside `lanes` may be anything: they are never read back
   const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+  // The group's rays that exist: a packet's arrays past its count were never
+  // written. Lanes outside `lanes` compute results that are never read back.
+  const __m256i in = _mm256_cmpgt_epi32(_mm256_set1_epi32(rays.count - at), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+  const __m256 o[3] = {_mm256_maskload_ps(rays.ox + at, in), _mm256_maskload_ps(rays.oy + at, in),
+                       _mm256_maskload_ps(rays.oz + at, in)};
+  const __m256 d[3] = {_mm256_maskload_ps(rays.dx + at, in), _mm256_maskload_ps(rays.dy + at, in),
+                       _mm256_maskload_ps(rays.dz + at, in)};
+  __m256 tB = _mm256_load_ps(tBest + at);  // preparePacket wrote every lane of the group
   __m256i* counts = reinterpret_cast<__m256i*>(tests + at);
   uint32_t done = 0;
   for (uint32_t p = 0; p < packs && done != lanes; ++p) {
@@ -238,7 +244,7 @@ WIDE_TARGET WIDE_INLINE uint32_t leafAcrossRays(const WideBvh& bvh, uint32_t fir
       alignas(32) float ts[8], us[8], vs[8];
       _mm256_store_ps(ts, t), _mm256_store_ps(us, u), _mm256_store_ps(vs, v);
       tB = _mm256_blendv_ps(tB, t, hitLanes);
-      if (anyHit) done |= hit;
+      if constexpr (kAnyHit) done |= hit;
       for (; hit; hit &= hit - 1) {
         const int lane = __builtin_ctz(hit);
         best[at + lane] = Hit{ts[lane], us[lane], vs[lane], pack.id[i]}, tBest[at + lane] = ts[lane];
@@ -394,8 +400,8 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const RayPacket& rays, const Pa
         perRay |= group;
         continue;
       }
-      const uint32_t found = leafAcrossRays(bvh, first, packs, real, rays, g, uint32_t(uint64_t(group) >> (8 * g)),
-                                            kAnyHit, tBest, best, tests);
+      const uint32_t found = leafAcrossRays<kAnyHit>(bvh, first, packs, real, rays, g,
+                                                     uint32_t(uint64_t(group) >> (8 * g)), tBest, best, tests);
       alive &= ~(Mask(found) << (8 * g));
     }
     for (Mask m = perRay; m;) {
