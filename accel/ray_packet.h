@@ -16,10 +16,11 @@ namespace passtrace {
 struct RayPacket {
   static constexpr int kMax = 64;  // one bit per ray in a 64-bit mask
   int count = 0;
-  // Lanes at and past `count` are not read.
-  alignas(32) float ox[kMax], oy[kMax], oz[kMax];
-  alignas(32) float dx[kMax], dy[kMax], dz[kMax];
-  alignas(32) float tMax[kMax];
+  // Lanes past `count` hold zeros or rays set earlier: SIMD code may load them
+  // with their group of eight (bvh8-packet's leaves) but never uses what they give.
+  alignas(32) float ox[kMax] = {}, oy[kMax] = {}, oz[kMax] = {};
+  alignas(32) float dx[kMax] = {}, dy[kMax] = {}, dz[kMax] = {};
+  alignas(32) float tMax[kMax] = {};
 
   void set(int i, const Ray& r) {
     ox[i] = r.origin.x, oy[i] = r.origin.y, oz[i] = r.origin.z;
