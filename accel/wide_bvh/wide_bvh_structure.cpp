@@ -79,6 +79,7 @@ std::optional<FilterStats> Bvh8Accelerator::traceBatch(const RayBatch& batch, st
   const size_t tilesX = image ? (size_t(batch.width) + kTileW - 1) / kTileW : 0;
   const size_t tiles = image ? tilesX * ((size_t(batch.height) + kTileH - 1) / kTileH) : (n + kTile - 1) / kTile;
   auto traceTiles = [&](size_t begin, size_t end) {
+    RayPacket rays;  // one per work item: RayPacket clears its arrays when made
     for (size_t tile = begin; tile < end; ++tile) {
       size_t index[kTile];
       int count = 0;
@@ -106,9 +107,9 @@ std::optional<FilterStats> Bvh8Accelerator::traceBatch(const RayBatch& batch, st
       for (int shadow = 0; shadow < 2; ++shadow) {
         const int m = sizes[shadow];
         if (m == 0) continue;
-        RayPacket rays;
         Hit packetHits[kTile];
         RayStats packetStats[kTile];
+        rays.count = 0;
         for (int k = 0; k < m; ++k) rays.push(batch.rays[members[shadow][k]]);
         traceWideBvhPacketAvx2(bvh_, rays, shadow != 0, std::span<Hit>(packetHits, size_t(m)),
                                std::span<RayStats>(packetStats, size_t(m)), packetConfigFor(shadow != 0));
