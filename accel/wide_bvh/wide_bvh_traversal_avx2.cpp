@@ -159,12 +159,18 @@ WIDE_TARGET WIDE_INLINE void transpose8(const __m256 (&in)[8], __m256 (&out)[8])
 // RayPre then written as two 32-byte rows of a transpose. Ray by ray it took
 // 94 instructions per ray, a seventh of a bunny primary frame. Also sets
 // tBest to the rays' tMax, and -inf in the lanes past the packet's end
-// (never live). `pre` has room for the packet rounded up to eight rays.
+// (never live), and keeps the inverse directions as columns for
+// nodeAcrossRays. `pre` has room for the packet rounded up to eight rays.
+// Returns the rays with an axis-parallel slab (bit r: ray r); sets bit g of
+// oneOctant when the rays of group g of eight all point into one octant.
 static_assert(sizeof(RayPre) == 64 && offsetof(RayPre, d) == 12 && offsetof(RayPre, inv) == 24 &&
                   offsetof(RayPre, parallel) == 36 && offsetof(RayPre, anyParallel) == 39 &&
                   offsetof(RayPre, nearAt) == 40 && offsetof(RayPre, farAt) == 52,
               "preparePacket writes RayPre as 16 four-byte columns");
-WIDE_TARGET void preparePacket(const RayPacket& packet, RayPre* pre, float* tBest) {
+WIDE_TARGET uint64_t preparePacket(const RayPacket& packet, RayPre* pre, float* tBest,
+                                   float (&invColumns)[3][kWidePacketMax], uint32_t& oneOctant) {
+  uint64_t parallelRays = 0;
+  oneOctant = 0;
   const __m256 tiny = _mm256_set1_ps(1e-20f), zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
   const __m256 magnitude = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
   const float* origin[3] = {packet.ox, packet.oy, packet.oz};
@@ -174,6 +180,8 @@ WIDE_TARGET void preparePacket(const RayPacket& packet, RayPre* pre, float* tBes
     const __m256i in = _mm256_cmpgt_epi32(_mm256_set1_epi32(n), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
     __m256 column[16];  // RayPre's fields in memory order, one ray per lane
     __m256i flags = _mm256_setzero_si256(), anyParallel = _mm256_setzero_si256();
+    const uint32_t rays = (1u << n) - 1u;
+    bool sameOctant = true;
     for (int k = 0; k < 3; ++k) {
       const __m256 d = _mm256_maskload_ps(direction[k] + first, in);
       // safeInverse: a component below 1e-20 in magnitude stands in as +-1e-20 (+ for -0).
@@ -185,16 +193,23 @@ WIDE_TARGET void preparePacket(const RayPacket& packet, RayPre* pre, float* tBes
                                                      _CMP_GT_OQ)),
                                                  31);  // 0 or 1
       const __m256i positive = _mm256_castps_si256(_mm256_cmp_ps(inv, zero, _CMP_GT_OQ));
+      const uint32_t signs = uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(positive))) & rays;
+      sameOctant = sameOctant && (signs == 0 || signs == rays);
       const __m256i slab = _mm256_set1_epi32(16 * k), maxArray = _mm256_set1_epi32(8);  // bounds + 8: the max array
       column[k] = _mm256_maskload_ps(origin[k] + first, in);
       column[3 + k] = d;
       column[6 + k] = inv;
+      _mm256_store_ps(invColumns[k] + first, inv);
       column[10 + k] = _mm256_castsi256_ps(_mm256_add_epi32(slab, _mm256_andnot_si256(positive, maxArray)));
       column[13 + k] = _mm256_castsi256_ps(_mm256_add_epi32(slab, _mm256_and_si256(positive, maxArray)));
       flags = _mm256_or_si256(flags, _mm256_slli_epi32(parallel, 8 * k));  // the bool parallel[k]
       anyParallel = _mm256_or_si256(anyParallel, parallel);
     }
     column[9] = _mm256_castsi256_ps(_mm256_or_si256(flags, _mm256_slli_epi32(anyParallel, 24)));
+    oneOctant |= uint32_t(sameOctant) << (first / 8);
+    parallelRays |= uint64_t(uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_slli_epi32(anyParallel, 31)))) &
+                             ((1u << n) - 1u))
+                    << first;
     __m256 rows[2][8];
     transpose8(*reinterpret_cast<const __m256(*)[8]>(column), rows[0]);
     transpose8(*reinterpret_cast<const __m256(*)[8]>(column + 8), rows[1]);
@@ -205,6 +220,56 @@ WIDE_TARGET void preparePacket(const RayPacket& packet, RayPre* pre, float* tBes
     }
     _mm256_store_ps(tBest + first, _mm256_blendv_ps(_mm256_set1_ps(-kInfinity),
                                                     _mm256_maskload_ps(packet.tMax + first, in), _mm256_castsi256_ps(in)));
+  }
+  return parallelRays;
+}
+
+// The least of eight lanes.
+WIDE_TARGET WIDE_INLINE float horizontalMin(__m256 v) {
+  __m128 h = _mm_min_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
+  h = _mm_min_ps(h, _mm_movehl_ps(h, h));
+  return _mm_cvtss_f32(_mm_min_ss(h, _mm_shuffle_ps(h, h, 1)));
+}
+
+// An inner node, one child at a time, against the live rays (`lanes`) of the
+// packet's group g of eight, whose rays all point into one octant, so they
+// share the slabs they enter first (`pre`'s nearAt and farAt, those of any of
+// them): the classic packet layout, as leafAcrossRays is for leaves. Per pair
+// of ray and child it computes boxTest8v's values, so the same bits. Rays with
+// an axis-parallel slab are not given here. ORs each child's hit rays into
+// raysOf, lowers nearOf to their least entry distance (closest-hit packets)
+// and counts the step for every live ray.
+template <typename Mask, bool kAnyHit>
+WIDE_TARGET WIDE_INLINE void nodeAcrossRays(const WideBvhNode& node, const RayPacket& rays,
+                                            const float (&inv)[3][kWidePacketMax], const RayPre& pre, int g,
+                                            uint32_t lanes, const float* tBest, uint32_t* steps,
+                                            Mask (&raysOf)[8], float (&nearOf)[8]) {
+  const int at = 8 * g;
+  const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+  const __m256i live = _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(lanes)), bit), bit);
+  __m256i* counts = reinterpret_cast<__m256i*>(steps + at);
+  _mm256_store_si256(counts, _mm256_sub_epi32(_mm256_load_si256(counts), live));  // live lanes are -1
+  const __m256 o[3] = {_mm256_load_ps(rays.ox + at), _mm256_load_ps(rays.oy + at), _mm256_load_ps(rays.oz + at)};
+  const __m256 iv[3] = {_mm256_load_ps(inv[0] + at), _mm256_load_ps(inv[1] + at), _mm256_load_ps(inv[2] + at)};
+  const __m256 tB = _mm256_load_ps(tBest + at);
+  const float* bounds = reinterpret_cast<const float*>(&node);  // minX[8], maxX[8], minY[8], ... (wide_bvh.h)
+  for (int c = 0; c < kWideBvhWidth; ++c) {
+    if (node.child[c] == kWideEmpty) continue;
+    __m256 s[3], l[3];
+    for (int k = 0; k < 3; ++k) {
+      s[k] = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(bounds + pre.nearAt[k] + c), o[k]), iv[k]);
+      l[k] = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(bounds + pre.farAt[k] + c), o[k]), iv[k]);
+    }
+    const __m256 near = _mm256_max_ps(_mm256_max_ps(s[0], s[1]), s[2]);
+    const __m256 exit = _mm256_mul_ps(_mm256_min_ps(_mm256_min_ps(l[0], l[1]), l[2]), _mm256_set1_ps(kRobustExitScale));
+    const __m256 hit = _mm256_and_ps(
+        _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(near, exit, _CMP_LE_OQ), _mm256_cmp_ps(exit, _mm256_setzero_ps(), _CMP_GE_OQ)),
+                      _mm256_cmp_ps(near, tB, _CMP_LT_OQ)),
+        _mm256_castsi256_ps(live));
+    // No branch on the result: whether a child is hit is what a predictor cannot guess.
+    raysOf[c] |= Mask(uint32_t(_mm256_movemask_ps(hit))) << at;
+    if constexpr (!kAnyHit)
+      nearOf[c] = std::min(nearOf[c], horizontalMin(_mm256_blendv_ps(_mm256_set1_ps(kInfinity), near, hit)));
   }
 }
 
@@ -261,7 +326,9 @@ WIDE_TARGET WIDE_INLINE uint32_t leafAcrossRays(const WideBvh& bvh, uint32_t fir
 // PacketConfig::singleRayAt, the last few rays at a node finish its subtree
 // alone (traverseSubtree): the same tests again, in single-ray order. With
 // PacketConfig::acrossRaysAt, groups of eight test leaves across their rays
-// (leafAcrossRays): the same arithmetic, one triangle at a time.
+// (leafAcrossRays): the same arithmetic, one triangle at a time. With
+// PacketConfig::nodesAcrossAt, groups of eight in one octant test inner nodes
+// across their rays (nodeAcrossRays): the same arithmetic, one child at a time.
 template <typename Mask>
 struct PacketEntry {
   uint32_t ref;
@@ -276,12 +343,20 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const RayPacket& rays, const Pa
   using Entry = PacketEntry<Mask>;
   const int count = rays.count;
   RayPre pre[kWidePacketMax];
-  uint32_t steps[kWidePacketMax] = {};
+  alignas(32) uint32_t steps[kWidePacketMax] = {};
   alignas(32) uint32_t tests[kWidePacketMax] = {};
   // best[r].t kept dense as well: which rays an entry still matters to is then
   // one vector compare per eight rays instead of a loop over the rays.
   alignas(32) float tBest[kWidePacketMax];
-  preparePacket(rays, pre, tBest);
+  alignas(32) float inv[3][kWidePacketMax];
+  uint32_t oneOctant;  // groups of eight whose rays share an octant
+  const auto parallelRays = Mask(preparePacket(rays, pre, tBest, inv, oneOctant));
+  // The rays nodeAcrossRays may take: those of one-octant groups without an axis-parallel slab.
+  Mask acrossCandidates = 0;
+  if (config.nodesAcrossAt > 0)
+    for (int g = 0; 8 * g < count; ++g)
+      if (oneOctant >> g & 1u) acrossCandidates |= Mask(0xFF) << (8 * g);
+  acrossCandidates &= ~parallelRays;
   for (int r = 0; r < count; ++r) best[r] = Hit{tBest[r]};
   if (bvh.nodes.empty()) return;
   Entry local[256];
@@ -332,10 +407,29 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const RayPacket& rays, const Pa
     }
     if (!wideIsLeaf(entry.ref)) {
       const WideBvhNode& node = bvh.nodes[entry.ref];
+      // Groups of eight with enough live rays test the node one child against
+      // their rays at once; the others, each ray against the eight children.
+      Mask perRay = live, acrossRays[8];
+      alignas(32) float acrossNear[8];
+      bool anyAcross = false;
+      for (Mask left = live & acrossCandidates; left;) {
+        const int g = __builtin_ctzll(left) >> 3;
+        const Mask group = left & (Mask(0xFF) << (8 * g));
+        left &= ~group;
+        if (__builtin_popcountll(group) < config.nodesAcrossAt) continue;
+        if (!anyAcross) {
+          std::fill(acrossRays, acrossRays + 8, Mask(0));
+          std::fill(acrossNear, acrossNear + 8, kInfinity);
+          anyAcross = true;
+        }
+        perRay &= ~group;
+        nodeAcrossRays<Mask, kAnyHit>(node, rays, inv, pre[8 * g], g, uint32_t(uint64_t(group) >> (8 * g)), tBest,
+                                      steps, acrossRays, acrossNear);
+      }
       // The rays' bits per child (64-ray packets: rays 0-31, then 32-63).
       __m256i childRays = _mm256_setzero_si256(), childRaysHigh = _mm256_setzero_si256();
-      __m256 childNear = _mm256_set1_ps(kInfinity);
-      for (Mask m = live; m;) {
+      __m256 childNear = anyAcross ? _mm256_load_ps(acrossNear) : _mm256_set1_ps(kInfinity);
+      for (Mask m = perRay; m;) {
         const int r = __builtin_ctzll(m);
         m &= m - 1;
         ++steps[r];
@@ -364,6 +458,7 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const RayPacket& rays, const Pa
       int n = 0;
       for (int lane = 0; lane < kWideBvhWidth; ++lane) {
         Mask raysOf = raysLow[lane];
+        if (anyAcross) raysOf |= acrossRays[lane];
         if constexpr (kWide) raysOf |= Mask(raysHigh[lane]) << 32;
         if (!raysOf) continue;
         Entry e{node.child[lane], nearOf[lane], raysOf};

@@ -169,7 +169,8 @@ TEST_P(WideBvhMeshTest, PacketTraversalFindsWhatSingleRaysFind) {
       }
   // acrossRaysAt 1: every leaf tested across the rays of each group that reaches it.
   for (const PacketConfig config : {PacketConfig{0, 0}, PacketConfig{2, 0}, PacketConfig{kWidePacketMax, 0},
-                                    PacketConfig{0, 1}, PacketConfig{2, 1}, PacketConfig{0, 5}}) {
+                                    PacketConfig{0, 1}, PacketConfig{2, 1}, PacketConfig{0, 5}, PacketConfig{2, 1, 1},
+                                    kClosestHitPackets, kAnyHitPackets}) {
     const int singleRayAt = config.singleRayAt;
     const std::vector<Ray>& rays = singleRayAt == kWidePacketMax ? withVertexRays : mix;
     for (bool anyHit : {false, true}) {
@@ -184,7 +185,8 @@ TEST_P(WideBvhMeshTest, PacketTraversalFindsWhatSingleRaysFind) {
           RayStats alone;
           const Hit single = traverseWideBvhAvx2(bvh, tris, ray, anyHit, TriangleTest::MollerTrumbore, &alone);
           const std::string where = "ray " + std::to_string(begin + k) + " singleRayAt " + std::to_string(singleRayAt) +
-                                    " acrossRaysAt " + std::to_string(config.acrossRaysAt);
+                                    " acrossRaysAt " + std::to_string(config.acrossRaysAt) + " nodesAcrossAt " +
+                                    std::to_string(config.nodesAcrossAt);
           ASSERT_EQ(hits[k].found(), single.found()) << where;
           if (!anyHit) {
             EXPECT_EQ(hits[k].t, single.t) << where;
@@ -204,13 +206,16 @@ TEST_P(WideBvhMeshTest, PacketTraversalFindsWhatSingleRaysFind) {
   }
 }
 
-// Leaves tested across rays (PacketConfig::acrossRaysAt) against the same
-// packets tested ray by ray: each ray does the same arithmetic on the same
-// triangles, so a closest hit is the same triangle, t, u and v to the bit, an
-// any-hit ray finds a hit exactly when it did, and every count is equal. On
-// coherent packets (an 8x8 tile of rays from one eye, where whole groups reach
-// a leaf) and on the incoherent mix, in groups from every live ray (1) up.
-TEST_P(WideBvhMeshTest, LeavesAcrossRaysFindAndCountWhatRaysAloneDo) {
+// Leaves and inner nodes tested across rays (PacketConfig::acrossRaysAt,
+// nodesAcrossAt) against the same packets tested ray by ray: each ray does
+// the same arithmetic on the same triangles and boxes, so a closest hit is the
+// same triangle, t, u and v to the bit, an any-hit ray finds a hit exactly
+// when it did, and every count is equal. On coherent packets (an 8x8 tile of
+// rays from one eye, where whole groups reach a node, most of them in one
+// octant; one tile's every other ray with a zero x direction, an
+// axis-parallel slab, which is left to the ray-by-ray test) and on the
+// incoherent mix, in groups from every live ray (1) up.
+TEST_P(WideBvhMeshTest, AcrossRaysFindAndCountWhatRaysAloneDo) {
   if (!wideBvhAvx2Available()) GTEST_SKIP() << "no AVX2";
   const auto& tris = GetParam().tris;
   const WideBvh bvh = collapseToWideBvh(buildBinnedSahBvh(tris), tris);
@@ -224,7 +229,15 @@ TEST_P(WideBvhMeshTest, LeavesAcrossRaysFindAndCountWhatRaysAloneDo) {
                                                              (tile / 4 + (i / 8) / 8.0f) / 4.0f, 0.5f);
       rays.push_back(Ray{eye, glm::normalize(target - eye), kInfinity});
     }
-  for (int acrossRaysAt : {1, 4, 8})
+  const glm::vec3 front(centre.x, centre.y, eye.z);
+  for (int i = 0; i < kWidePacketMax; ++i) {
+    const glm::vec3 target = bounds.min + size * glm::vec3(i % 2 == 0 ? 0.5f : 0.5f + i / 256.0f, i / 64.0f, 0.5f);
+    glm::vec3 direction = target - front;
+    if (i % 2 == 0) direction.x = 0.0f;
+    rays.push_back(Ray{front, glm::normalize(direction), kInfinity});
+  }
+  const PacketConfig configs[] = {{0, 1, 0}, {0, 4, 0}, {0, 8, 0}, {0, 0, 1}, {0, 0, 4}, {0, 0, 8}, {0, 4, 4}};
+  for (const PacketConfig& config : configs)
     for (bool anyHit : {false, true})
       for (size_t begin = 0; begin < rays.size(); begin += kWidePacketMax) {
         const size_t count = std::min<size_t>(kWidePacketMax, rays.size() - begin);
@@ -232,9 +245,11 @@ TEST_P(WideBvhMeshTest, LeavesAcrossRaysFindAndCountWhatRaysAloneDo) {
         std::vector<Hit> alone(count), across(count);
         std::vector<RayStats> aloneStats(count), acrossStats(count);
         traceWideBvhPacketAvx2(bvh, packet, anyHit, alone, aloneStats, PacketConfig{0, 0});
-        traceWideBvhPacketAvx2(bvh, packet, anyHit, across, acrossStats, PacketConfig{0, acrossRaysAt});
+        traceWideBvhPacketAvx2(bvh, packet, anyHit, across, acrossStats, config);
         for (size_t k = 0; k < count; ++k) {
-          const std::string where = "ray " + std::to_string(begin + k) + " acrossRaysAt " + std::to_string(acrossRaysAt);
+          const std::string where = "ray " + std::to_string(begin + k) + " acrossRaysAt " +
+                                    std::to_string(config.acrossRaysAt) + " nodesAcrossAt " +
+                                    std::to_string(config.nodesAcrossAt);
           ASSERT_EQ(across[k].found(), alone[k].found()) << where;
           if (!anyHit) {
             EXPECT_EQ(across[k].t, alone[k].t) << where;
