@@ -38,10 +38,11 @@ inline constexpr int kWidePacketMax = RayPacket::kMax;  // rays per packet: one 
 struct PacketConfig {
   int singleRayAt = 0;   // 0: never; kWidePacketMax: every ray alone from the root
   int acrossRaysAt = 0;  // 0: never; 1: every group with a live ray
-  // The same for inner nodes: a group of eight whose rays point into one
-  // octant (so they share the slabs they enter first) and of which at least
-  // `nodesAcrossAt` reach the node tests it one child against the eight rays
-  // per instruction instead of each ray against the eight children.
+  // The same for inner nodes, in any-hit packets (closest-hit ones ignore
+  // it): a group of eight whose rays point into one octant (so they share the
+  // slabs they enter first) and of which at least `nodesAcrossAt` reach the
+  // node tests it one child against the eight rays per instruction instead of
+  // each ray against the eight children.
   int nodesAcrossAt = 0;  // 0: never; 1: every one-octant group with a live ray
 };
 // bvh8-packet's choice, measured with tests/measure/packet_handover.cpp (512²,
@@ -54,12 +55,14 @@ struct PacketConfig {
 // entry-distance cull): Cornell's shadow rays 6.8 -> 3.9 ms, Robots' 6.7 ->
 // 5.6, Kitchen's 13.1 -> 11.1; primary rays 13-35 % faster on four scenes; the
 // bunny's rays 2-3 % slower (docs/bench-speed/NOTES.md, eighth session).
-// Inner nodes across rays from 4 of 8, any-hit packets only (tests/measure/
-// ray_kinds.cpp, 512², one thread, 4 and 8 measured, two rounds): shadow rays
-// on Robots 4.2 -> 3.4 ms, Kitchen 10.4-10.9 -> 9.5-9.7, Cornell 3.3-3.6 ->
-// 3.2, the bunny's unchanged; AO rays within noise (few AO groups share an
-// octant). Closest-hit packets took 1-4 % longer with it (the least entry
-// distance per child costs a horizontal minimum), so they never do (tenth session).
+// Inner nodes across rays from 4 of 8 (1, 2, 4, 6 and 8 tried), any-hit
+// packets only (tests/measure/ray_kinds.cpp, 512², one thread, against the
+// build without, alternated, two rounds): shadow rays on Robots 4.3-4.5 ->
+// 3.6 ms, Kitchen 10.3-10.8 -> 9.8-9.9, Cornell 3.4 -> 3.3, the bunny's
+// within noise; AO rays within 2 % (few AO groups share an octant). Closest-hit
+// packets took 1-4 % longer with it (the least entry distance per child costs
+// a horizontal minimum), so only any-hit packets are built with it
+// (docs/bench-speed/NOTES.md, tenth session).
 inline constexpr PacketConfig kClosestHitPackets{0, 4, 0}, kAnyHitPackets{4, 4, 4};
 inline constexpr PacketConfig packetConfigFor(bool anyHit) { return anyHit ? kAnyHitPackets : kClosestHitPackets; }
 // A packet's rays (Möller–Trumbore only) sharing one stack; hits and stats

@@ -159,14 +159,15 @@ WIDE_TARGET WIDE_INLINE void transpose8(const __m256 (&in)[8], __m256 (&out)[8])
 // RayPre then written as two 32-byte rows of a transpose. Ray by ray it took
 // 94 instructions per ray, a seventh of a bunny primary frame. Also sets
 // tBest to the rays' tMax, and -inf in the lanes past the packet's end
-// (never live), and keeps the inverse directions as columns for
-// nodeAcrossRays. `pre` has room for the packet rounded up to eight rays.
-// Returns the rays with an axis-parallel slab (bit r: ray r); sets bit g of
-// oneOctant when the rays of group g of eight all point into one octant.
+// (never live). `pre` has room for the packet rounded up to eight rays.
+// With kAcross, for nodeAcrossRays, it also keeps the inverse directions as
+// columns, sets bit g of oneOctant when the rays of group g of eight all point
+// into one octant and returns the rays with an axis-parallel slab (bit r: ray r).
 static_assert(sizeof(RayPre) == 64 && offsetof(RayPre, d) == 12 && offsetof(RayPre, inv) == 24 &&
                   offsetof(RayPre, parallel) == 36 && offsetof(RayPre, anyParallel) == 39 &&
                   offsetof(RayPre, nearAt) == 40 && offsetof(RayPre, farAt) == 52,
               "preparePacket writes RayPre as 16 four-byte columns");
+template <bool kAcross>
 WIDE_TARGET uint64_t preparePacket(const RayPacket& packet, RayPre* pre, float* tBest,
                                    float (&invColumns)[3][kWidePacketMax], uint32_t& oneOctant) {
   uint64_t parallelRays = 0;
@@ -193,23 +194,27 @@ WIDE_TARGET uint64_t preparePacket(const RayPacket& packet, RayPre* pre, float* 
                                                      _CMP_GT_OQ)),
                                                  31);  // 0 or 1
       const __m256i positive = _mm256_castps_si256(_mm256_cmp_ps(inv, zero, _CMP_GT_OQ));
-      const uint32_t signs = uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(positive))) & rays;
-      sameOctant = sameOctant && (signs == 0 || signs == rays);
+      if constexpr (kAcross) {
+        const uint32_t signs = uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(positive))) & rays;
+        sameOctant = sameOctant && (signs == 0 || signs == rays);
+        _mm256_store_ps(invColumns[k] + first, inv);
+      }
       const __m256i slab = _mm256_set1_epi32(16 * k), maxArray = _mm256_set1_epi32(8);  // bounds + 8: the max array
       column[k] = _mm256_maskload_ps(origin[k] + first, in);
       column[3 + k] = d;
       column[6 + k] = inv;
-      _mm256_store_ps(invColumns[k] + first, inv);
       column[10 + k] = _mm256_castsi256_ps(_mm256_add_epi32(slab, _mm256_andnot_si256(positive, maxArray)));
       column[13 + k] = _mm256_castsi256_ps(_mm256_add_epi32(slab, _mm256_and_si256(positive, maxArray)));
       flags = _mm256_or_si256(flags, _mm256_slli_epi32(parallel, 8 * k));  // the bool parallel[k]
       anyParallel = _mm256_or_si256(anyParallel, parallel);
     }
     column[9] = _mm256_castsi256_ps(_mm256_or_si256(flags, _mm256_slli_epi32(anyParallel, 24)));
-    oneOctant |= uint32_t(sameOctant) << (first / 8);
-    parallelRays |= uint64_t(uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_slli_epi32(anyParallel, 31)))) &
-                             ((1u << n) - 1u))
-                    << first;
+    if constexpr (kAcross) {
+      oneOctant |= uint32_t(sameOctant) << (first / 8);
+      parallelRays |= uint64_t(uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_slli_epi32(anyParallel, 31)))) &
+                               rays)
+                      << first;
+    }
     __m256 rows[2][8];
     transpose8(*reinterpret_cast<const __m256(*)[8]>(column), rows[0]);
     transpose8(*reinterpret_cast<const __m256(*)[8]>(column + 8), rows[1]);
@@ -224,26 +229,20 @@ WIDE_TARGET uint64_t preparePacket(const RayPacket& packet, RayPre* pre, float* 
   return parallelRays;
 }
 
-// The least of eight lanes.
-WIDE_TARGET WIDE_INLINE float horizontalMin(__m256 v) {
-  __m128 h = _mm_min_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
-  h = _mm_min_ps(h, _mm_movehl_ps(h, h));
-  return _mm_cvtss_f32(_mm_min_ss(h, _mm_shuffle_ps(h, h, 1)));
-}
-
 // An inner node, one child at a time, against the live rays (`lanes`) of the
 // packet's group g of eight, whose rays all point into one octant, so they
 // share the slabs they enter first (`pre`'s nearAt and farAt, those of any of
 // them): the classic packet layout, as leafAcrossRays is for leaves. Per pair
 // of ray and child it computes boxTest8v's values, so the same bits. Rays with
 // an axis-parallel slab are not given here. ORs each child's hit rays into
-// raysOf, lowers nearOf to their least entry distance (closest-hit packets)
-// and counts the step for every live ray.
-template <typename Mask, bool kAnyHit>
+// raysOf and counts the step for every live ray. Any-hit packets only: a
+// closest-hit packet also needs each child's least entry distance, a
+// horizontal minimum per child, and took 1-4 % longer with it.
+template <typename Mask>
 WIDE_TARGET WIDE_INLINE void nodeAcrossRays(const WideBvhNode& node, const RayPacket& rays,
                                             const float (&inv)[3][kWidePacketMax], const RayPre& pre, int g,
                                             uint32_t lanes, const float* tBest, uint32_t* steps,
-                                            Mask (&raysOf)[8], float (&nearOf)[8]) {
+                                            Mask (&raysOf)[8]) {
   const int at = 8 * g;
   const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
   const __m256i live = _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(lanes)), bit), bit);
@@ -268,8 +267,6 @@ WIDE_TARGET WIDE_INLINE void nodeAcrossRays(const WideBvhNode& node, const RayPa
         _mm256_castsi256_ps(live));
     // No branch on the result: whether a child is hit is what a predictor cannot guess.
     raysOf[c] |= Mask(uint32_t(_mm256_movemask_ps(hit))) << at;
-    if constexpr (!kAnyHit)
-      nearOf[c] = std::min(nearOf[c], horizontalMin(_mm256_blendv_ps(_mm256_set1_ps(kInfinity), near, hit)));
   }
 }
 
@@ -327,8 +324,9 @@ WIDE_TARGET WIDE_INLINE uint32_t leafAcrossRays(const WideBvh& bvh, uint32_t fir
 // alone (traverseSubtree): the same tests again, in single-ray order. With
 // PacketConfig::acrossRaysAt, groups of eight test leaves across their rays
 // (leafAcrossRays): the same arithmetic, one triangle at a time. With
-// PacketConfig::nodesAcrossAt, groups of eight in one octant test inner nodes
-// across their rays (nodeAcrossRays): the same arithmetic, one child at a time.
+// PacketConfig::nodesAcrossAt (any-hit packets), groups of eight in one octant
+// test inner nodes across their rays (nodeAcrossRays): the same arithmetic,
+// one child at a time.
 template <typename Mask>
 struct PacketEntry {
   uint32_t ref;
@@ -349,11 +347,11 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const RayPacket& rays, const Pa
   // one vector compare per eight rays instead of a loop over the rays.
   alignas(32) float tBest[kWidePacketMax];
   alignas(32) float inv[3][kWidePacketMax];
-  uint32_t oneOctant;  // groups of eight whose rays share an octant
-  const auto parallelRays = Mask(preparePacket(rays, pre, tBest, inv, oneOctant));
+  uint32_t oneOctant = 0;  // groups of eight whose rays share an octant
+  const auto parallelRays = Mask(preparePacket<kAnyHit>(rays, pre, tBest, inv, oneOctant));
   // The rays nodeAcrossRays may take: those of one-octant groups without an axis-parallel slab.
   Mask acrossCandidates = 0;
-  if (config.nodesAcrossAt > 0)
+  if (kAnyHit && config.nodesAcrossAt > 0)
     for (int g = 0; 8 * g < count; ++g)
       if (oneOctant >> g & 1u) acrossCandidates |= Mask(0xFF) << (8 * g);
   acrossCandidates &= ~parallelRays;
@@ -410,25 +408,21 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const RayPacket& rays, const Pa
       // Groups of eight with enough live rays test the node one child against
       // their rays at once; the others, each ray against the eight children.
       Mask perRay = live, acrossRays[8];
-      alignas(32) float acrossNear[8];
       bool anyAcross = false;
       for (Mask left = live & acrossCandidates; left;) {
         const int g = __builtin_ctzll(left) >> 3;
         const Mask group = left & (Mask(0xFF) << (8 * g));
         left &= ~group;
         if (__builtin_popcountll(group) < config.nodesAcrossAt) continue;
-        if (!anyAcross) {
-          std::fill(acrossRays, acrossRays + 8, Mask(0));
-          std::fill(acrossNear, acrossNear + 8, kInfinity);
-          anyAcross = true;
-        }
+        if (!anyAcross) std::fill(acrossRays, acrossRays + 8, Mask(0));
+        anyAcross = true;
         perRay &= ~group;
-        nodeAcrossRays<Mask, kAnyHit>(node, rays, inv, pre[8 * g], g, uint32_t(uint64_t(group) >> (8 * g)), tBest,
-                                      steps, acrossRays, acrossNear);
+        nodeAcrossRays<Mask>(node, rays, inv, pre[8 * g], g, uint32_t(uint64_t(group) >> (8 * g)), tBest, steps,
+                             acrossRays);
       }
       // The rays' bits per child (64-ray packets: rays 0-31, then 32-63).
       __m256i childRays = _mm256_setzero_si256(), childRaysHigh = _mm256_setzero_si256();
-      __m256 childNear = anyAcross ? _mm256_load_ps(acrossNear) : _mm256_set1_ps(kInfinity);
+      __m256 childNear = _mm256_set1_ps(kInfinity);
       for (Mask m = perRay; m;) {
         const int r = __builtin_ctzll(m);
         m &= m - 1;

@@ -207,7 +207,8 @@ TEST_P(WideBvhMeshTest, PacketTraversalFindsWhatSingleRaysFind) {
 }
 
 // Leaves and inner nodes tested across rays (PacketConfig::acrossRaysAt,
-// nodesAcrossAt) against the same packets tested ray by ray: each ray does
+// nodesAcrossAt, which only any-hit packets read) against the same packets
+// tested ray by ray: each ray does
 // the same arithmetic on the same triangles and boxes, so a closest hit is the
 // same triangle, t, u and v to the bit, an any-hit ray finds a hit exactly
 // when it did, and every count is equal. On coherent packets (an 8x8 tile of
