@@ -317,6 +317,11 @@ class GltfBuilder {
           scene_.light.color = glm::vec3(1.0f);
           if (light.color.size() == 3)
             scene_.light.color = glm::vec3(light.color[0], light.color[1], light.color[2]);
+          // JSON numbers are doubles: 1e39 is finite there and infinite here.
+          const glm::vec3& c = scene_.light.color;
+          if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z))
+            fail("node " + std::to_string(index) + ": light " + std::to_string(li) +
+                 ": color is not finite in single precision");
           haveLight_ = true;
         }
       }

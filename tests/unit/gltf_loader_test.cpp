@@ -132,6 +132,9 @@ TEST(GltfLoaderErrors, WrongCount) {
   expectError("not_multiple_of_3.gltf", "mesh 0 primitive 0: TRIANGLES with 4 indices, not a multiple of 3");
 }
 TEST(GltfLoaderErrors, NaNPosition) { expectError("nan_position.gltf", "mesh 0 primitive 0: accessor 0 element 1 is not finite"); }
+TEST(GltfLoaderErrors, LightColorOverflowsSinglePrecision) {
+  expectError("light_overflow.gltf", "node 1: light 0: color is not finite in single precision");
+}
 TEST(GltfLoaderErrors, AccessorLargerThanItsBuffer) { expectError("accessor_overflow.gltf", "accessor 0"); }
 TEST(GltfLoaderErrors, NodeCycle) { expectError("node_cycle.gltf", "node 0 has more than one parent (or a cycle)"); }
 TEST(GltfLoaderErrors, MissingBufferFile) { expectError("missing_buffer.gltf", "missing.bin"); }

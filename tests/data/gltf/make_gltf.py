@@ -85,14 +85,16 @@ write("modes.gltf", b.gltf(
         {"attributes": {"POSITION": strip}, "mode": LINES},
     ]}]))
 
-# view.gltf: camera, KHR point light, mirror and diffuse materials, normals
-# under a non-uniform scale.
+# view.gltf: camera, KHR point light, mirror and diffuse materials (the
+# diffuse one with transmission, ior and specular), normals under a
+# non-uniform scale.
 b = Builder()
 pos = b.vec3([(0, 0, 0), (1, 0, 0), (0, 1, 0)])
 nrm = b.vec3([(1, 1, 0), (1, 1, 0), (1, 1, 0)])
 write("view.gltf", b.gltf(
     scenes=[{"nodes": [0, 1, 2, 3]}],
-    extensionsUsed=["KHR_lights_punctual"],
+    extensionsUsed=["KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
+                    "KHR_materials_specular"],
     extensions={"KHR_lights_punctual": {"lights": [
         {"type": "directional", "color": [1, 1, 1]},
         {"type": "point", "color": [1.0, 0.5, 0.25], "intensity": 20}]}},
@@ -105,7 +107,11 @@ write("view.gltf", b.gltf(
     ],
     materials=[
         {"pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.8, 0.7, 1], "metallicFactor": 1.0, "roughnessFactor": 0.05}},
-        {"pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.4, 0.6, 1], "metallicFactor": 0.0, "roughnessFactor": 0.5}},
+        {"pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.4, 0.6, 1], "metallicFactor": 0.0, "roughnessFactor": 0.5},
+         "extensions": {
+             "KHR_materials_transmission": {"transmissionFactor": 0.75},
+             "KHR_materials_ior": {"ior": 1.33},
+             "KHR_materials_specular": {"specularFactor": 0.5, "specularColorFactor": [1.0, 0.5, 0.25]}}},
     ],
     meshes=[{"primitives": [{"attributes": {"POSITION": pos, "NORMAL": nrm}, "material": 0}]},
             {"primitives": [{"attributes": {"POSITION": pos}, "material": 1}]}]))
@@ -157,6 +163,13 @@ write("node_cycle.gltf", doc)
 doc = simple("missing_buffer.gltf", TRI)
 doc["buffers"][0]["uri"] = "missing.bin"
 write("missing_buffer.gltf", doc)
+# A point light whose colour overflows single precision (found by fuzz_gltf).
+doc = simple("light_overflow.gltf", TRI)
+doc["extensionsUsed"] = ["KHR_lights_punctual"]
+doc["extensions"] = {"KHR_lights_punctual": {"lights": [{"type": "point", "color": [1e39, 0.5, 0.25]}]}}
+doc["nodes"].append({"translation": [0, 1, 5], "extensions": {"KHR_lights_punctual": {"light": 0}}})
+doc["scenes"][0]["nodes"].append(1)
+write("light_overflow.gltf", doc)
 with open("bad_json.gltf", "w") as f:
     f.write('{"asset": {"version": "2.0"}, "nodes": [\n')
 
