@@ -28,6 +28,23 @@ WIDE_TARGET WIDE_INLINE uint32_t packTest4(const TrianglePack& pack, const RayPr
 
 #include "accel/wide_bvh/wide_bvh_traverse.inc"
 
+// The slab test's verdict, lane by lane, from each axis's entry (s) and exit
+// (l) distance: geometry.h's intersectsBox. `near` gets the entry distances;
+// returns all-ones in the lanes whose box is hit before tBest.
+WIDE_TARGET WIDE_INLINE __m256 slabVerdict(const __m256 (&s)[3], const __m256 (&l)[3], __m256 tBest, __m256& near) {
+  near = _mm256_max_ps(_mm256_max_ps(s[0], s[1]), s[2]);
+  const __m256 exit = _mm256_mul_ps(_mm256_min_ps(_mm256_min_ps(l[0], l[1]), l[2]), _mm256_set1_ps(kRobustExitScale));
+  return _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(near, exit, _CMP_LE_OQ),
+                                     _mm256_cmp_ps(exit, _mm256_setzero_ps(), _CMP_GE_OQ)),
+                       _mm256_cmp_ps(near, tBest, _CMP_LT_OQ));
+}
+
+// All-ones in the lanes whose bit is set in `bits` (bit i: lane i).
+WIDE_TARGET WIDE_INLINE __m256i laneMask(uint32_t bits) {
+  const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+  return _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(bits)), bit), bit);
+}
+
 // The eight slab tests as vectors: entry distances and the all-ones lanes of the boxes hit.
 WIDE_TARGET WIDE_INLINE void boxTest8v(const WideBvhNode& node, const RayPre& pre, float tBest, __m256& near,
                                        __m256& hit) {
@@ -52,11 +69,7 @@ WIDE_TARGET WIDE_INLINE void boxTest8v(const WideBvhNode& node, const RayPre& pr
       s[k] = _mm256_blendv_ps(inf, minusInf, inside);
       l[k] = _mm256_blendv_ps(minusInf, inf, inside);
     }
-  near = _mm256_max_ps(_mm256_max_ps(s[0], s[1]), s[2]);
-  const __m256 exit = _mm256_mul_ps(_mm256_min_ps(_mm256_min_ps(l[0], l[1]), l[2]), _mm256_set1_ps(kRobustExitScale));
-  hit = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(near, exit, _CMP_LE_OQ),
-                                                 _mm256_cmp_ps(exit, _mm256_setzero_ps(), _CMP_GE_OQ)),
-                                   _mm256_cmp_ps(near, _mm256_set1_ps(tBest), _CMP_LT_OQ));
+  hit = slabVerdict(s, l, _mm256_set1_ps(tBest), near);
 }
 
 WIDE_TARGET WIDE_INLINE uint32_t boxTest8(const WideBvhNode& node, const RayPre& pre, float tBest, float* tNear) {
@@ -244,8 +257,7 @@ WIDE_TARGET WIDE_INLINE void nodeAcrossRays(const WideBvhNode& node, const RayPa
                                             uint32_t lanes, const float* tBest, uint32_t* steps,
                                             Mask (&raysOf)[8]) {
   const int at = 8 * g;
-  const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-  const __m256i live = _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(lanes)), bit), bit);
+  const __m256i live = laneMask(lanes);
   __m256i* counts = reinterpret_cast<__m256i*>(steps + at);
   _mm256_store_si256(counts, _mm256_sub_epi32(_mm256_load_si256(counts), live));  // live lanes are -1
   const __m256 o[3] = {_mm256_load_ps(rays.ox + at), _mm256_load_ps(rays.oy + at), _mm256_load_ps(rays.oz + at)};
@@ -259,12 +271,8 @@ WIDE_TARGET WIDE_INLINE void nodeAcrossRays(const WideBvhNode& node, const RayPa
       s[k] = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(bounds + pre.nearAt[k] + c), o[k]), iv[k]);
       l[k] = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(bounds + pre.farAt[k] + c), o[k]), iv[k]);
     }
-    const __m256 near = _mm256_max_ps(_mm256_max_ps(s[0], s[1]), s[2]);
-    const __m256 exit = _mm256_mul_ps(_mm256_min_ps(_mm256_min_ps(l[0], l[1]), l[2]), _mm256_set1_ps(kRobustExitScale));
-    const __m256 hit = _mm256_and_ps(
-        _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(near, exit, _CMP_LE_OQ), _mm256_cmp_ps(exit, _mm256_setzero_ps(), _CMP_GE_OQ)),
-                      _mm256_cmp_ps(near, tB, _CMP_LT_OQ)),
-        _mm256_castsi256_ps(live));
+    __m256 near;
+    const __m256 hit = _mm256_and_ps(slabVerdict(s, l, tB, near), _mm256_castsi256_ps(live));
     // No branch on the result: whether a child is hit is what a predictor cannot guess.
     raysOf[c] |= Mask(uint32_t(_mm256_movemask_ps(hit))) << at;
   }
@@ -281,7 +289,6 @@ WIDE_TARGET WIDE_INLINE uint32_t leafAcrossRays(const WideBvh& bvh, uint32_t fir
                                                 const uint32_t* real, const RayPacket& rays, int g, uint32_t lanes,
                                                 float* tBest, Hit* best, uint32_t* tests) {
   const int at = 8 * g;
-  const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
   // Whole groups of eight lanes: RayPacket initialises its arrays, and masked
   // loads made the traversal 9-53 % slower on this CPU. Lanes outside `lanes`
   // compute results that are never read back.
@@ -292,7 +299,7 @@ WIDE_TARGET WIDE_INLINE uint32_t leafAcrossRays(const WideBvh& bvh, uint32_t fir
   uint32_t done = 0;
   for (uint32_t p = 0; p < packs && done != lanes; ++p) {
     const TrianglePack& pack = bvh.packs[first + p];
-    const __m256i looking = _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(lanes & ~done)), bit), bit);
+    const __m256i looking = laneMask(lanes & ~done);
     _mm256_store_si256(counts, _mm256_add_epi32(_mm256_load_si256(counts),
                                                 _mm256_and_si256(looking, _mm256_set1_epi32(int(real[p])))));
     for (int i = 0; i < kTrianglePackWidth; ++i) {
