@@ -8,7 +8,9 @@ shared machine):
 
   machine     FP32 peak (independent FMA chains, AVX-512 / AVX2 / scalar as the
               CPU has them) and memory bandwidth (STREAM triad), on 2 threads and 1:
-              build/tests/measure/measure_machine_peak;
+              build/tests/measure/measure_machine_peak; and what one texel fetch
+              costs a fragment kernel on this GL, the stream rows' unit of work
+              (measure_texel_fetch);
   baseline    bare Embree: rtcIntersect1 over the CPU renderer's primary rays
               on 2 threads and 1, no shading (measure_bare_embree);
   ray kinds   traversal alone of the renderer's primary, shadow and AO rays,
@@ -22,7 +24,9 @@ shared machine):
 The roofline table divides each run's box+triangle tests per second (from
 --json's node_tests_per_ray and triangle_tests_per_ray) by the machine's
 limits under a stated cost model: a box (slab) test is 12 FP32 operations and
-reads 24 bytes, a triangle test (Moller-Trumbore) 40 operations and 36 bytes.
+reads 24 bytes, a triangle test (Moller-Trumbore) 40 operations and 36 bytes;
+the stream rows' tests per second also over the measured texel-fetch rate, at
+one texel per test (a stream kernel reads at least that much).
 """
 import json
 import os
@@ -112,6 +116,16 @@ def measure_baselines(binary, scenes, size, repeats, bart, bart_ok, bench):
                 out["machine"][str(t)] = r
             else:
                 out["errors"].append(f"measure_machine_peak {t}: {err}")
+    fetch = measure_tool(binary, "measure_texel_fetch")
+    if fetch is None:
+        out["errors"].append("measure_texel_fetch not built (cmake --build build --target measure_texel_fetch)")
+    else:
+        bench.log("texel fetch ...")
+        r, err = run_lines([fetch, size, max(repeats, 5)])
+        if r:
+            out["fetch"] = r
+        else:
+            out["errors"].append(f"measure_texel_fetch: {err}")
     kinds = measure_tool(binary, "measure_ray_kinds")
     out["kinds"] = {}
     if kinds is None:
@@ -179,7 +193,17 @@ def loop_rows(by, by_thesis):
     return rows
 
 
-def roofline_rows(by, machine):
+# The texel-fetch rate the roofline holds stream rows to: a walk's addresses
+# form a chain, and primary rays read the same nodes as their neighbours.
+STREAM_FETCH_WAY = "chain, coherent"
+
+
+def fetch_rate(fetch):
+    """G texel fetches per second of STREAM_FETCH_WAY, or None."""
+    return next((f.get("g_fetches_per_s") for f in fetch or [] if f.get("way") == STREAM_FETCH_WAY), None)
+
+
+def roofline_rows(by, machine, fetches):
     peak = machine.get("2", {})
     gflops, gbs = peak.get("fp32_gflops"), peak.get("triad_gb_per_s")
     rows = []
@@ -189,14 +213,15 @@ def roofline_rows(by, machine):
         nodes, tris = r.get("node_tests_per_ray"), r.get("triangle_tests_per_ray")
         mrays = r.get("mrays_per_s")
         if nodes is None or not mrays:
-            rows.append([scene, renderer, structure, num(mrays), "–", "–", "–", "–", "–"])
+            rows.append([scene, renderer, structure, num(mrays), "–", "–", "–", "–", "–", "–"])
             continue
         gtests = (nodes + tris) * mrays / 1e3  # giga tests per second
         gflop = (nodes * BOX_FLOPS + tris * TRI_FLOPS) * mrays / 1e3
         gbyte = (nodes * BOX_BYTES + tris * TRI_BYTES) * mrays / 1e3
         rows.append([scene, renderer, structure, num(mrays), num(nodes, 1), num(tris, 1), num(gtests, 3),
                      f"{100 * gflop / gflops:.2f} %" if gflops else "–",
-                     f"{100 * gbyte / gbs:.2f} %" if gbs else "–"])
+                     f"{100 * gbyte / gbs:.2f} %" if gbs else "–",
+                     f"{100 * gtests / fetches:.1f} %" if fetches and renderer == "gpu" else "–"])
     return rows
 
 
@@ -270,6 +295,20 @@ def write_report(out_dir, results, records, baselines, scenes):
                   for t, v in sorted(machine.items(), reverse=True)]), "",
         "`build/tests/measure/measure_machine_peak THREADS`: independent FMA chains (2 FLOPs per lane), best of 3; "
         "triad a = b + s·c over 3 × 128 MB, 12 bytes per element, best of 5.", "",
+    ]
+    if baselines.get("fetch"):
+        lines += [
+            "What one texel fetch costs a fragment kernel on this GL, the unit a stream traversal is made of "
+            "(bvh-octant reads two texels per box step and three per triangle step). "
+            f"`build/tests/measure/measure_texel_fetch {p['size']} REPEATS`: a full-screen pass of {p['size']}² "
+            "elements each reading 32 texels of a 2²¹-texel table, less the same pass reading none; a chain takes "
+            "each address from the texel before, as a walk does; coherent elements of an 8×8 block read the same "
+            "texels, as primary rays do. All of the GL's threads; minimum over the repeats.", "",
+            md_table(["way", "ns per fetch per element", "G fetches/s", "pass ms (32 fetches)", "pass ms (none)"],
+                     [[f.get("way"), num(f.get("ns_per_fetch"), 3), num(f.get("g_fetches_per_s"), 3),
+                       num(f.get("pass_ms")), num(f.get("empty_pass_ms"))] for f in baselines["fetch"]]), "",
+        ]
+    lines += [
         "## Ratios (issue 17's goals)", "",
         "Bare Embree: `build/tests/measure/measure_bare_embree SCENE SIZE THREADS REPEATS` (rtcIntersect1 over "
         "the CPU renderer's primary rays, no shading). Goals: best CPU row ≥ 1.2× bare Embree; `-r 3` ≥ 0.9× "
@@ -304,9 +343,13 @@ def write_report(out_dir, results, records, baselines, scenes):
         "Structure::cpuStepsVisitNodes: a BVH step tests one node's box, a kd step one split plane, a grid or "
         "octree step one cell; Embree counts nothing). Cost model: a box test "
         f"{BOX_FLOPS} FLOPs and {BOX_BYTES} bytes, a triangle test {TRI_FLOPS} FLOPs and {TRI_BYTES} bytes; "
-        "the percentages are the achieved rate under that model over the 2-thread peak and triad bandwidth.", "",
+        "the percentages are the achieved rate under that model over the 2-thread peak and triad bandwidth. "
+        f"Stream rows also over the texel-fetch rate ({STREAM_FETCH_WAY}, above) at one texel per test, the "
+        "least a stream kernel reads: the whole frame (ray generation, shading) counts against it, so 100 % is "
+        "out of reach.", "",
         md_table(["scene", "renderer", "structure", "Mrays/s", "box tests/ray", "triangle tests/ray",
-                  "G tests/s", "% of FP32 peak", "% of triad bandwidth"], roofline_rows(by, machine)), "",
+                  "G tests/s", "% of FP32 peak", "% of triad bandwidth", "% of texel-fetch rate"],
+                 roofline_rows(by, machine, fetch_rate(baselines.get("fetch")))), "",
     ]
     if baselines["errors"]:
         lines += ["## Baselines that failed", ""] + [f"- {e}" for e in baselines["errors"]] + [""]

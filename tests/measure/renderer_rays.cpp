@@ -26,7 +26,9 @@ std::vector<std::vector<size_t>> tiles(int width, int tileW, int tileH) {
   return out;
 }
 
-int positive(const char* name, const char* text) {
+}  // namespace
+
+int parsePositiveInt(const char* name, const char* text) {
   int value = 0;
   const char* end = text + std::strlen(text);
   const auto [at, error] = std::from_chars(text, end, value);
@@ -34,6 +36,8 @@ int positive(const char* name, const char* text) {
     throw std::invalid_argument(std::string(name) + ": '" + text + "' is not a positive integer");
   return value;
 }
+
+namespace {
 
 void add(PacketSet& set, const std::vector<Ray>& packet) {
   if (packet.empty()) return;
@@ -50,9 +54,9 @@ std::optional<RayToolArgs> parseRayToolArgs(int argc, char** argv, int defaultRe
   }
   RayToolArgs args{argv[1]};
   args.repeats = defaultRepeats;
-  if (argc > 2) args.width = positive("WIDTH", argv[2]);
-  if (argc > 3) args.repeats = positive("REPEATS", argv[3]);
-  if (argc > 4) args.aoSamples = positive("AO_SAMPLES", argv[4]);
+  if (argc > 2) args.width = parsePositiveInt("WIDTH", argv[2]);
+  if (argc > 3) args.repeats = parsePositiveInt("REPEATS", argv[3]);
+  if (argc > 4) args.aoSamples = parsePositiveInt("AO_SAMPLES", argv[4]);
   return args;
 }
 

@@ -34,4 +34,7 @@ struct RayToolArgs {
 // std::invalid_argument naming an argument that is not a positive integer.
 std::optional<RayToolArgs> parseRayToolArgs(int argc, char** argv, int defaultRepeats);
 
+// `text` as a positive int; throws std::invalid_argument "NAME: 'text' is not a positive integer".
+int parsePositiveInt(const char* name, const char* text);
+
 }  // namespace passtrace
