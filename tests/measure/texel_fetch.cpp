@@ -12,7 +12,7 @@
 //   independent: the same addresses, computed from the start alone;
 //   coherent:    the elements of an 8x8 block read the same texels (primary rays);
 //   scattered:   every element reads its own (incoherent rays).
-// Prints one JSON line per way: the minimum of each pass over REPEATS (glFinish
+// Checks that every element read FETCHES texels. Prints one JSON line per way: the minimum of each pass over REPEATS (glFinish
 // and a steady clock, after an untimed warm-up), ns per fetch per element and
 // G fetches/s over the whole pass (all llvmpipe threads).
 //
@@ -100,6 +100,10 @@ int main(int argc, char** argv) {
         const double b = passMs(kernel, stream);
         if (r >= 0) none = std::min(none, a), all = std::min(all, b);
       }
+      // Every texel has y = 1 and z = 0.5: an element that skipped or repeated a read shows in its sums.
+      for (const glm::vec4& sum : stream.read(0))
+        if (sum.y != float(fetches) || sum.z != 0.5f * float(fetches))
+          throw std::runtime_error(std::string(way.name) + ": an element read other texels than the table's");
       const double perFetchNs = (all - none) * 1e6 / (double(width) * width * fetches);
       std::printf("{\"renderer\": \"%s\", \"way\": \"%s\", \"width\": %d, \"fetches\": %d, \"texels\": %u, "
                   "\"pass_ms\": %.3f, \"empty_pass_ms\": %.3f, \"ns_per_fetch\": %.4f, \"g_fetches_per_s\": %.3f}\n",
