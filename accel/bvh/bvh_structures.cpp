@@ -93,12 +93,19 @@ struct OctantBuild {
 
 OctantBuild buildOctantSequences(std::span<const Triangle> tris, const AccelBuildConfig& config) {
   const auto start = std::chrono::steady_clock::now();
-  const BinaryBvh binary = buildBvhStackTree(tris, config.bvhBuilder);  // bvh-stack's tree
+  // bvh-stack's builder, but with leaves of one triangle allowed: the walk
+  // spends a whole step (three texels) on each triangle of a leaf, so the SAH
+  // decides every leaf rather than stopping at four. Measured on the stream
+  // path: triangle tests per ray 7.4 -> 3.1 (Kitchen), 9.3 -> 3.6 (Robots),
+  // 1.26 -> 0.77 (bunny), 8-10 % more rays per second on the BART scenes
+  // (docs/bench-speed/NOTES.md, eleventh session).
+  BvhStackConfig constants;
+  constants.leafSize = 1;
+  const BinaryBvh binary = buildBvhStackTree(tris, config.bvhBuilder, constants);
   const Bvh bvh = bvhFromBinaryBvh(binary, tris);
   OctantBuild build{flattenOctantSequences(bvh, tris), bvhStats("bvh-octant", bvh)};
   build.stats.buildMs = millisecondsSince(start);
   build.stats.floatsPerTriangle = kOctants * build.sequences.sequences[0].floatsPerTriangle();
-  const BvhStackConfig constants;
   build.stats.sahCost = binaryBvhSahCost(binary, constants.traversalCost, constants.intersectionCost);
   build.stats.structureBytes = kOctants * build.sequences.sequences[0].texels.size() * sizeof(glm::vec4);
   return build;
