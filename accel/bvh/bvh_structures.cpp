@@ -97,7 +97,7 @@ OctantBuild buildOctantSequences(std::span<const Triangle> tris, const AccelBuil
   // spends a whole step (three texels) on each triangle of a leaf, so the SAH
   // decides every leaf rather than stopping at four. Measured on the stream
   // path: triangle tests per ray 7.4 -> 3.1 (Kitchen), 9.3 -> 3.6 (Robots),
-  // 1.26 -> 0.77 (bunny), 8-10 % more rays per second on the BART scenes
+  // 1.26 -> 0.77 (bunny); bvh-octant-fused 3-17 % more rays per second
   // (docs/bench-speed/NOTES.md, eleventh session).
   BvhStackConfig constants;
   constants.leafSize = 1;
