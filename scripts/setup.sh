@@ -1,9 +1,18 @@
 #!/usr/bin/env bash
 # Sets passtrace up on a Debian 12 machine: installs the Debian packages it
 # needs (only those missing, so running it again is cheap), then configures
-# and builds everything in build/.
+# build/ and builds the program (build/passtrace) and its kernels — or, with
+# --tests, everything: the test binaries and measurement tools too.
+#   bash scripts/setup.sh            the program: the README's first command
+#   bash scripts/setup.sh --tests    everything: the README's second command
 set -euo pipefail
 cd "$(dirname "$0")/.."
+target=(--target passtrace)
+case "${1:-}" in
+  "") ;;
+  --tests) target=() ;;
+  *) echo "setup: unknown argument '$1' (expected nothing or --tests)" >&2; exit 2 ;;
+esac
 
 packages=(
   cmake g++ make pkg-config
@@ -31,5 +40,9 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}"
 fi
 
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
-cmake --build build -j"$(nproc)"
+# ccache, where the machine has it, makes rebuilds in other checkouts cheap;
+# it is not installed here.
+launcher=()
+command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${launcher[@]}"
+cmake --build build -j"$(nproc)" "${target[@]}"
