@@ -1,13 +1,13 @@
 #!/usr/bin/env python3
-"""Writes README.md's table of structures from `passtrace --list --json`.
+"""Writes docs/structures.md's table of structures from `passtrace --list --json`.
 
-The table goes between the two marker comments in README.md (BEGIN and END
-below); the rest of the file is left as it is.
+The table goes between the two marker comments in docs/structures.md (BEGIN and
+END below); the rest of the file is left as it is.
 
     python3 scripts/structures_table.py [--binary build/passtrace] [--check]
 
---check changes nothing and exits 1 when README.md's table differs from the
-registry's.
+--check changes nothing and exits 1 when docs/structures.md's table differs from
+the registry's.
 """
 import argparse
 import pathlib
@@ -44,8 +44,9 @@ def table(registry):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--binary", default=str(REPO / "build" / "passtrace"))
-    parser.add_argument("--readme", default=str(REPO / "README.md"))
-    parser.add_argument("--check", action="store_true", help="exit 1 if README.md's table is out of date")
+    parser.add_argument("--output", "--readme", dest="readme", default=str(REPO / "docs" / "structures.md"),
+                        help="the Markdown file holding the table (default: docs/structures.md)")
+    parser.add_argument("--check", action="store_true", help="exit 1 if the table is out of date")
     args = parser.parse_args()
 
     readme = pathlib.Path(args.readme)
