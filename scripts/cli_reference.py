@@ -49,7 +49,7 @@ def indent_of(line):
 
 
 def split_name(text):
-    """'-r,--renderer INT:INT in [0 - 3] [2]' -> (['-r', '--renderer'], 'INT:INT in [0 - 3]', '2')."""
+    """'-r,--renderer INT:INT in [0 - 3]=2' (or '... [2]') -> (['-r', '--renderer'], 'INT:INT in [0 - 3]', '2')."""
     text = re.sub(r",\s+", ",", text.strip())
     tokens = text.split(" ")
     names = []
@@ -57,15 +57,23 @@ def split_name(text):
         names += [n for n in tokens.pop(0).split(",") if n]
     rest = " ".join(tokens).strip()
     default = None
-    m = re.match(r"^(.*?)\s*\[([^\[\]]*)\]$", rest)
-    if m and not re.search(r"(^|\s)in$", m.group(1)):
+    m = re.match(r"^(.*?)=([^=\]]*)$", rest)        # CLI11 2.1: "INT:INT in [0 - 3]=2"
+    if m:
         rest, default = m.group(1).strip(), m.group(2)
+    else:                                             # later CLI11: "INT:INT in [0 - 3] [2]"
+        m = re.match(r"^(.*?)\s*\[([^\[\]]*)\]$", rest)
+        if m and not re.search(r"(^|\s)in$", m.group(1)):
+            rest, default = m.group(1).strip(), m.group(2)
     return names, rest, default
 
 
 def parse(help_text):
     """Returns (usage line or None, [(group title, [(names, value, default, description)])])."""
     lines = help_text.expandtabs().splitlines()
+    # The description column: where most same-line descriptions start.
+    starts = [gaps[-1].end() for l in lines if l.lstrip().startswith("-") and indent_of(l) <= ENTRY_MAX_INDENT
+              for gaps in [list(re.finditer(r"\S\s{2,}(?=\S)", l))] if gaps]
+    column = max(set(starts), key=starts.count) if starts else None
     usage = None
     groups = []
     entry = None   # [names, value, default, [description parts]]
@@ -117,9 +125,15 @@ def parse(help_text):
         if ind <= ENTRY_MAX_INDENT and (stripped.startswith("-") or current[0] == "Positionals"):
             finish()
             preamble = False
-            stripped = re.sub(r",\s+-", ",-", stripped)   # "-s,     --scene": one name list
+            # "-s,     --scene" (CLI11 aligning long names): one name list
+            stripped = re.sub(r"^-[^\s,]*(,\s+-[^\s,]*)+", lambda m: re.sub(r",\s+", ",", m.group(0)), stripped)
             gap = re.search(r"\s{2,}", stripped)
-            head, desc = (stripped[:gap.start()], stripped[gap.end():]) if gap else (stripped, "")
+            if gap:
+                head, desc = stripped[:gap.start()], stripped[gap.end():]
+            elif column and len(line) > column and line[column - 1] == " " and line[column] != " ":
+                head, desc = line[:column].strip(), line[column:].strip()   # a name one short of the column
+            else:
+                head, desc = stripped, ""
             names, value, default = split_name(head)
             entry = [names, value, default, [desc.strip()]]
             continue
