@@ -130,7 +130,8 @@ def parse(help_text):
             gap = re.search(r"\s{2,}", stripped)
             if gap:
                 head, desc = stripped[:gap.start()], stripped[gap.end():]
-            elif column and len(line) > column and line[column - 1] == " " and line[column] != " ":
+            elif (column and len(line) > column and line[column - 1] == " " and line[column] != " "
+                  and not (i < len(lines) and indent_of(lines[i]) >= CONTINUATION_MIN_INDENT)):
                 head, desc = line[:column].strip(), line[column:].strip()   # a name one short of the column
             else:
                 head, desc = stripped, ""
