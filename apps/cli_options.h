@@ -43,6 +43,7 @@ struct Options {
   unsigned threads = 0;             // --threads: CPU renderer threads, 0 = all cores
   std::optional<glm::vec3> eye, lookAt, up;
   std::optional<float> fov;
+  std::vector<glm::vec3> lights;    // --light x,y,z (repeatable): replace the file's lights
   std::string output;               // -o
   std::string hits;                 // --hits (OpenEXR)
   std::string json;                 // --json FILE (with --list and no FILE: standard output)

@@ -38,7 +38,7 @@ RunSettings toRunSettings(const Options& o) {
   s.gpu.maxPageTexels = o.pageTexels;
   s.gpu.compact = o.compact == "always" ? Compaction::Always : o.compact == "on" ? Compaction::On : Compaction::Off;
   s.threads = o.threads;
-  s.eye = o.eye, s.lookAt = o.lookAt, s.up = o.up, s.fov = o.fov;
+  s.eye = o.eye, s.lookAt = o.lookAt, s.up = o.up, s.fov = o.fov, s.lights = o.lights;
   s.output = o.output, s.hits = o.hits, s.json = o.json, s.heatmap = o.heatmap;
   s.exportPath = o.exportPath;
   s.frames = o.frames;

@@ -18,6 +18,7 @@
 #include "render/memory_check.h"
 #include "render/renderer.h"
 #include "scenes/scene_export.h"
+#include "scenes/scene_lights.h"
 #include "scenes/scene_scale.h"
 #include "stream/inout_stream.h"
 
@@ -258,6 +259,7 @@ RunReport renderSequence(const RunSettings& o, Progress& progress) {
         throw std::runtime_error(o.scene + ": the scene's rescaling changes over the frames; use --dynamic rebuild");
       const CameraSpec view = cameraViews(scene, o).front();
       makeCameraBasis(view, o.width, o.height);
+      placeLights(scene, o.lights, view);
       progress.frame(size_t(f), size_t(o.frames));
       std::unique_ptr<Renderer> rebuilt;
       Renderer* renderer = nullptr;
@@ -344,7 +346,7 @@ RunReport runSession(const RunSettings& o, Progress& progress) {
     checkRunFitsInMemory(o.scene, o.renderer, structure, sphereFieldTriangles(o.sceneOptions.triangles), pixels,
                          extraBytesPerPixel(o));
   progress.stage("loading " + o.scene);
-  const Scene scene = loadScene(o.scene, o.sceneOptions);
+  Scene scene = loadScene(o.scene, o.sceneOptions);
   checkRunFitsInMemory(o.scene, o.renderer, structure, scene.triangles.size(), pixels, extraBytesPerPixel(o));
   if (scene.triangles.empty()) throw std::runtime_error(o.scene + ": the scene has no triangles");
   if (std::none_of(scene.triangles.begin(), scene.triangles.end(), hasArea)) {
@@ -353,6 +355,7 @@ RunReport runSession(const RunSettings& o, Progress& progress) {
   }
   const std::vector<CameraSpec> views = cameraViews(scene, o);
   for (const CameraSpec& v : views) makeCameraBasis(v, o.width, o.height);  // reject a bad camera before building
+  placeLights(scene, o.lights, views.front());
   if (o.cone) {
     traceConeRun(o, *structure, scene, views, report, progress);
     report.scene = scene.name;

@@ -36,6 +36,7 @@ struct RunSettings {
   unsigned threads = 0;             // CPU renderers; 0 = all cores
   std::optional<glm::vec3> eye, lookAt, up;  // in the file's units
   std::optional<float> fov;
+  std::vector<glm::vec3> lights;             // --light, in the file's units; empty: the scene's (scenes/scene_lights.h)
   std::string output, hits, json, heatmap;   // empty: not written
   GlBackend glBackend = GlBackend::Auto;
   std::vector<BuildParam> givenParams;  // flags given; those the structure ignores are warned of

@@ -512,6 +512,7 @@ Scene AffParser::finish(const fs::path& path) {
   }
   if (lights_.empty()) {
     scene_.light = framedLight(box);
+    scene_.lightIsDefault = true;
   } else {
     scene_.light.position = lights_.front().position;
     scene_.light.color = glm::vec3(0.0f);

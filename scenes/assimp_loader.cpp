@@ -194,6 +194,7 @@ Scene AssimpBuilder::build() {
   const Aabb box = scene_.bounds();
   scene_.camera = framedCamera(box);
   scene_.light = framedLight(box);
+  scene_.lightIsDefault = true;  // these formats carry no lights
   scene_.background = {0.1f, 0.12f, 0.16f};
   scene_.ambient = 0.1f;
   scene_.name = file_.stem().string();

@@ -534,7 +534,7 @@ Scene GltfBuilder::build() {
               << "\n";
   const Aabb box = scene_.bounds();
   if (!haveCamera_) scene_.camera = framedCamera(box);
-  if (!haveLight_) scene_.light = framedLight(box);
+  if (!haveLight_) scene_.light = framedLight(box), scene_.lightIsDefault = true;
   scene_.background = {0.1f, 0.12f, 0.16f};
   scene_.ambient = 0.1f;
   scene_.name = file_.stem().string();

@@ -67,6 +67,10 @@ struct Scene {
   // --shading whitted's shadow rays; `light` is then their sum at the first
   // one's position (the thesis rules' one light). Empty: `light` alone.
   std::vector<PointLight> lights;
+  // The file has no light: `light` was framed on the bounds from outside
+  // (framedLight), and a view from inside gets one of its own
+  // (scenes/scene_lights.h).
+  bool lightIsDefault = false;
   glm::vec3 background{0.0f};
   float ambient = 0.1f;  // fraction of C added regardless of the light
   CameraSpec camera;     // the scene's default view

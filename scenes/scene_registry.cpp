@@ -60,6 +60,7 @@ void frame(Scene& scene) {
   const Aabb box = scene.bounds();
   scene.camera = framedCamera(box);
   scene.light = framedLight(box);
+  scene.lightIsDefault = true;
   scene.background = {0.1f, 0.12f, 0.16f};
   scene.ambient = 0.1f;
 }

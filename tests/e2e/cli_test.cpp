@@ -34,6 +34,24 @@ TEST_F(Cli, HelpExplainsEveryThesisFlag) {
     EXPECT_NE(r.out.find(flag), std::string::npos) << flag;
 }
 
+TEST_F(Cli, HelpGroupsTheFlagsBeforeTheCatalog) {
+  const RunResult r = run("--help");
+  ASSERT_EQ(r.status, 0);
+  const size_t catalog = r.out.find("Structures");
+  ASSERT_NE(catalog, std::string::npos) << r.out;
+  size_t previous = 0;
+  for (const char* group : {"Scene and camera:", "Image and outputs:", "Renderer and structure:", "Build parameters",
+                            "Shading and ray mixes:", "GPU stream path", "Sequences and dynamic scenes:",
+                            "Seed-specific", "Run control:"}) {
+    const size_t at = r.out.find(group);
+    ASSERT_NE(at, std::string::npos) << group;
+    EXPECT_GT(at, previous) << group << " out of order";
+    EXPECT_LT(at, catalog) << group << " after the catalog";
+    previous = at;
+  }
+  EXPECT_EQ(r.out.find("Options:"), std::string::npos) << "a flag outside every group";
+}
+
 void expectJsonContract(const nlohmann::json& j, const std::string& renderer) {
   for (const char* key : {"scene", "triangles", "renderer", "accelerator", "width", "height", "bounces", "rays",
                           "build_ms", "frame_ms", "mrays_per_s", "passes", "accel_floats_per_triangle", "gl_renderer"})

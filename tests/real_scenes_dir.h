@@ -1,0 +1,20 @@
+#pragma once
+// Where the tests find the real benchmark scenes (Conference, Sibenik, ...):
+// $PASSTRACE_SCENES_DIR, else ../shared/scenes/real beside the checkout.
+// Empty when absent: the tests that use them then skip (a user's machine has none).
+
+#include <cstdlib>
+#include <filesystem>
+#include <system_error>
+
+namespace passtrace::test {
+
+inline std::filesystem::path realScenesDir() {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (const char* dir = std::getenv("PASSTRACE_SCENES_DIR"); dir && fs::is_directory(dir, ec)) return dir;
+  const fs::path beside = (fs::path(PASSTRACE_TEST_DATA) / ".." / ".." / ".." / "shared" / "scenes" / "real").lexically_normal();
+  return fs::is_directory(beside, ec) ? beside : fs::path();
+}
+
+}  // namespace passtrace::test
