@@ -85,10 +85,13 @@ TEST_F(OutputFilesTest, NoCommitLeavesNothingAndKeepsWhatWasThere) {
 
 TEST_F(OutputFilesTest, ADeviceThatRefusesFailsTheRunBeforeAnyFileAppears) {
   if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full here";
-  OutputFiles outputs;
-  outputs.write(dir_ / "image.png", "pixels");
-  outputs.write("/dev/full", "{}\n");
-  EXPECT_EQ(errorOf([&] { outputs.commitAll(); }), "/dev/full: write failed: No space left on device");
+  {
+    OutputFiles outputs;
+    outputs.write(dir_ / "image.png", "pixels");
+    outputs.write("/dev/full", "{}\n");
+    EXPECT_EQ(errorOf([&] { outputs.commitAll(); }), "/dev/full: write failed: No space left on device");
+    EXPECT_FALSE(fs::exists(dir_ / "image.png"));
+  }  // the run's error unwinds past its outputs: the temporary file goes
   EXPECT_TRUE(entries().empty()) << *entries().begin();
 }
 
