@@ -54,6 +54,19 @@ fs::path temporaryName(const fs::path& path) {
   return path.parent_path() / name;
 }
 
+// The file a chain of symbolic links names, existing or not (/dev/stdout
+// redirected to a file, a link to a file not yet written): that file is
+// replaced, never the link.
+fs::path followLinks(fs::path path) {
+  std::error_code error;
+  for (int hops = 0; fs::is_symlink(fs::symlink_status(path, error)); ++hops) {
+    const fs::path link = fs::read_symlink(path, error);
+    if (error || hops == 40) fail(path, "cannot follow the symbolic link", error ? error.value() : ELOOP);
+    path = link.is_absolute() ? link : path.parent_path() / link;
+  }
+  return path;
+}
+
 // Flushes the renames themselves; a directory that cannot be synced is no
 // reason to fail a run whose files are all in place.
 void syncDirectory(const fs::path& dir) {
@@ -72,24 +85,18 @@ OutputFiles::~OutputFiles() {
 }
 
 void OutputFiles::write(const fs::path& path, std::string_view bytes) {
-  const fs::path key = fs::absolute(path).lexically_normal();
-  for (const Pending& p : pending_)
-    if (fs::absolute(p.target).lexically_normal() == key)
-      throw std::runtime_error(path.string() + ": named by two outputs of the run");
   struct stat info;
   const bool exists = ::stat(path.c_str(), &info) == 0;
   if (exists && S_ISDIR(info.st_mode)) throw std::runtime_error(path.string() + ": is a directory");
-  if (exists && !S_ISREG(info.st_mode)) {
-    pending_.push_back({path, {}, std::string(bytes)});
+  const bool stream = exists && !S_ISREG(info.st_mode);
+  const fs::path target = stream ? path : followLinks(path);
+  const fs::path key = fs::absolute(target).lexically_normal();
+  for (const Pending& p : pending_)
+    if (fs::absolute(p.target).lexically_normal() == key)
+      throw std::runtime_error(path.string() + ": named by two outputs of the run");
+  if (stream) {
+    pending_.push_back({target, {}, std::string(bytes)});
     return;
-  }
-  // A symbolic link (/dev/stdout redirected to a file, say) is followed: the
-  // file it names is replaced, never the link.
-  std::error_code error;
-  fs::path target = path;
-  if (fs::is_symlink(fs::symlink_status(path, error))) {
-    target = fs::weakly_canonical(path, error);
-    if (error) fail(path, "cannot follow the symbolic link", error.value());
   }
   pending_.push_back({target, temporaryName(target), {}});  // before writing: the destructor removes a partial file
   writeFile(path, pending_.back().temp, O_CREAT | O_TRUNC, bytes, false);

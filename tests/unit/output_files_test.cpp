@@ -112,6 +112,16 @@ TEST_F(OutputFilesTest, DevicesAndPipesAreWrittenIntoNotReplaced) {
   EXPECT_EQ(entries(), (std::set<std::string>{"a.txt", "pipe"}));
 }
 
+TEST_F(OutputFilesTest, ASymbolicLinkIsFollowedNotReplaced) {
+  fs::create_symlink("real.json", dir_ / "link.json");
+  OutputFiles outputs;
+  outputs.write(dir_ / "link.json", "through the link");
+  outputs.commitAll();
+  EXPECT_TRUE(fs::is_symlink(dir_ / "link.json"));
+  EXPECT_EQ(read(dir_ / "real.json"), "through the link");
+  EXPECT_EQ(entries(), (std::set<std::string>{"link.json", "real.json"}));
+}
+
 TEST_F(OutputFilesTest, BadTargetsAreOneLineErrorsNamingTheFile) {
   OutputFiles outputs;
   const fs::path missing = dir_ / "missing" / "a.png";
