@@ -17,7 +17,8 @@
 // (fsync too, where the target supports it), before any rename. So a device
 // that refuses the bytes (ENOSPC on /dev/full) fails the run before any
 // regular file appears; what a device or pipe has already accepted cannot be
-// taken back.
+// taken back. A symbolic link is followed to the file it names, which is
+// replaced (so /dev/stdout redirected to a file gets a new file there).
 //
 // Every failure throws std::runtime_error("PATH: reason"), one line.
 
