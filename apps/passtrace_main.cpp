@@ -11,7 +11,7 @@
 #include "apps/cli_options.h"
 #include "apps/run_settings.h"
 #include "passtrace_version.h"
-#include "render/atomic_file.h"
+#include "render/output_files.h"
 #include "render/catalog.h"
 
 int main(int argc, char** argv) {
@@ -25,7 +25,11 @@ int main(int argc, char** argv) {
     if (options.list) {
       const std::string text = options.listJson ? passtrace::catalogJson().dump(2) + "\n" : passtrace::catalogText();
       if (options.json.empty()) std::cout << text;
-      else passtrace::writeTextFile(options.json, text);
+      else {
+        passtrace::OutputFiles outputs;
+        outputs.write(options.json, text);
+        outputs.commitAll();
+      }
       return 0;
     }
     // --threads caps every oneTBB pool: the renderer's and the structure builds'.

@@ -6,7 +6,6 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "render/atomic_file.h"
 #include "render/cone_tracer.h"
 #include "render/gpu_cone_tracer.h"
 #include "render/heatmap.h"
@@ -52,7 +51,7 @@ void checkConeRun(const RunSettings& o) {
 }
 
 void traceConeRun(const RunSettings& o, const Structure& structure, const Scene& scene,
-                  const std::vector<CameraSpec>& views, RunReport& report, Progress& progress) {
+                  const std::vector<CameraSpec>& views, RunReport& report, Progress& progress, OutputFiles& outputs) {
   progress.stage("building " + std::string(structure.name) + " for cones over " +
                  std::to_string(scene.triangles.size()) + " triangles");
   const bool stream = o.renderer == RendererId::Gpu;
@@ -111,12 +110,12 @@ void traceConeRun(const RunSettings& o, const Structure& structure, const Scene&
   if (!o.coneHits.empty()) {
     // Axis distances in the file's units: 2^-k undoes the rescaling exactly.
     for (ConeHitRecord& h : first.hits) h.t = std::ldexp(h.t, -scene.scaleExponent);
-    writeConeHitBuffer(o.coneHits, first.width, first.height, first.hits);
+    outputs.write(o.coneHits, encodeConeHitBuffer(o.coneHits, first.width, first.height, first.hits));
   }
   if (!o.heatmap.empty()) {
     std::vector<float> cost(first.nodes.size());
     for (size_t i = 0; i < cost.size(); ++i) cost[i] = float(first.nodes[i]) + float(first.triangles[i]);
-    writeImage(o.heatmap, first.width, first.height, heatmapRgb(cost));
+    outputs.write(o.heatmap, encodeImage(o.heatmap, first.width, first.height, heatmapRgb(cost)));
   }
 }
 

@@ -2,10 +2,12 @@
 // The --cone part of a run (render/session.cpp calls it): checks the cone
 // flags before anything is loaded, then builds the structure's cone query,
 // traces one cone per pixel per angle (the fastest of the repeats) and
-// writes --cone-hits, --heatmap (nodes + triangles per pixel) and the report.
+// writes --cone-hits and --heatmap (nodes + triangles per pixel) into the
+// run's outputs, which the session commits with the report.
 
 #include <vector>
 
+#include "render/output_files.h"
 #include "render/run_report.h"
 #include "render/session.h"
 
@@ -17,6 +19,6 @@ namespace passtrace {
 void checkConeRun(const RunSettings& o);
 
 void traceConeRun(const RunSettings& o, const Structure& structure, const Scene& scene,
-                  const std::vector<CameraSpec>& views, RunReport& report, Progress& progress);
+                  const std::vector<CameraSpec>& views, RunReport& report, Progress& progress, OutputFiles& outputs);
 
 }  // namespace passtrace

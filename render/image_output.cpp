@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cctype>
 #include <cstddef>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
-
-#include "render/atomic_file.h"
 
 namespace passtrace {
 namespace {
@@ -39,33 +39,42 @@ void checkSize(const fs::path& path, int width, int height, std::size_t values, 
                    std::to_string(height) + ", got " + std::to_string(values));
 }
 
-// Writes into a temporary file beside path, renamed over it only once
-// complete. The writer is chosen from the final name.
+// The writer the extension names; it must be able to write to memory.
+std::unique_ptr<OIIO::ImageOutput> createWriter(const fs::path& path) {
+  auto out = OIIO::ImageOutput::create(path.string());
+  if (!out) fail(path, OIIO::geterror());
+  if (!out->supports("ioproxy"))
+    fail(path, std::string("OpenImageIO's ") + out->format_name() +
+                   " writer cannot write to memory; use .png, .exr, .tif, .jpg or .hdr");
+  return out;
+}
+
+// The file's bytes, encoded in memory so that writing them is OutputFiles'
+// job, with every write checked (OpenImageIO's own file writes do not all
+// report a full disk). The writer is chosen from the name.
 // The same pixels give the same bytes on every run: no capture date (the
 // OpenEXR writer otherwise stamps the current time into the header).
 template <class WritePixels>
-void writeAtomically(const fs::path& path, OIIO::ImageSpec spec, WritePixels&& writePixels) {
-  auto out = OIIO::ImageOutput::create(path.string());
-  if (!out) fail(path, OIIO::geterror());
+std::string encode(const fs::path& path, OIIO::ImageSpec spec, WritePixels&& writePixels) {
+  const auto out = createWriter(path);
   spec.attribute("DateTime", "");
-  TemporaryFile temp(path);
-  if (!out->open(temp.path().string(), spec)) fail(path, out->geterror());
+  OIIO::Filesystem::IOVecOutput memory;
+  if (!out->set_ioproxy(&memory) || !out->open(path.string(), spec)) fail(path, out->geterror());
   if (!writePixels(*out)) {
     const std::string reason = out->geterror();
     out->close();
     fail(path, reason);
   }
   if (!out->close()) fail(path, out->geterror());
-  temp.commit();
+  const std::vector<unsigned char>& bytes = memory.buffer();
+  return std::string(bytes.begin(), bytes.end());
 }
 
 }  // namespace
 
-void checkImageFormat(const fs::path& path) {
-  if (!OIIO::ImageOutput::create(path.string())) fail(path, OIIO::geterror());
-}
+void checkImageFormat(const fs::path& path) { createWriter(path); }
 
-void writeImage(const fs::path& path, int width, int height, const std::vector<float>& rgb) {
+std::string encodeImage(const fs::path& path, int width, int height, const std::vector<float>& rgb) {
   checkSize(path, width, height, rgb.size(), 3);
   const std::string extension = lowerExtension(path);
   const bool floatFormat = extension == ".exr" || extension == ".hdr";
@@ -73,18 +82,18 @@ void writeImage(const fs::path& path, int width, int height, const std::vector<f
   if (!floatFormat)  // written as [0,1] fractions of 255; NaN becomes 0
     for (float& x : pixels) x = x > 0.0f ? std::min(x, 1.0f) : 0.0f;
   const OIIO::ImageSpec spec(width, height, 3, floatFormat ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-  writeAtomically(path, spec, [&](OIIO::ImageOutput& out) {
+  return encode(path, spec, [&](OIIO::ImageOutput& out) {
     return out.write_image(OIIO::TypeDesc::FLOAT, pixels.data());
   });
 }
 
-void writeHitBuffer(const fs::path& path, int width, int height, const std::vector<HitRecord>& hits) {
+std::string encodeHitBuffer(const fs::path& path, int width, int height, const std::vector<HitRecord>& hits) {
   if (lowerExtension(path) != ".exr") fail(path, "hit buffers are written as OpenEXR only (use .exr)");
   checkSize(path, width, height, hits.size(), 1);
   OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::FLOAT);
   spec.channelnames = {"t", "u", "v", "id"};
   spec.channelformats = {OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::UINT32};
-  writeAtomically(path, spec, [&](OIIO::ImageOutput& out) {
+  return encode(path, spec, [&](OIIO::ImageOutput& out) {
     // UNKNOWN: the data is already in the per-channel formats, which is
     // exactly HitRecord's layout.
     return out.write_image(OIIO::TypeDesc::UNKNOWN, hits.data());
@@ -121,13 +130,13 @@ std::vector<HitRecord> readHitBuffer(const fs::path& path, int& width, int& heig
   return hits;
 }
 
-void writeConeHitBuffer(const fs::path& path, int width, int height, const std::vector<ConeHitRecord>& hits) {
+std::string encodeConeHitBuffer(const fs::path& path, int width, int height, const std::vector<ConeHitRecord>& hits) {
   if (lowerExtension(path) != ".exr") fail(path, "cone hit buffers are written as OpenEXR only (use .exr)");
   checkSize(path, width, height, hits.size(), 1);
   OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::FLOAT);
   spec.channelnames = {"count", "id", "t"};
   spec.channelformats = {OIIO::TypeDesc::UINT32, OIIO::TypeDesc::UINT32, OIIO::TypeDesc::FLOAT};
-  writeAtomically(path, spec, [&](OIIO::ImageOutput& out) {
+  return encode(path, spec, [&](OIIO::ImageOutput& out) {
     return out.write_image(OIIO::TypeDesc::UNKNOWN, hits.data());  // already ConeHitRecord's per-channel layout
   });
 }

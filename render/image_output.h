@@ -1,23 +1,26 @@
 #pragma once
-// Writing rendered images and hit buffers with OpenImageIO. Files appear
-// atomically: a failed write leaves nothing under the final name. Every
+// Rendered images and hit buffers encoded with OpenImageIO, in memory: each
+// encode* returns the bytes of the file `path` names (the format follows its
+// extension), for the run's OutputFiles (render/output_files.h) to write.
+// Formats whose OpenImageIO writer cannot write to memory are refused. Every
 // failure throws std::runtime_error("PATH: reason").
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace passtrace {
 
-// Throws unless OpenImageIO can write the format the extension names, so a
-// tool can refuse a bad output name before it renders.
+// Throws unless OpenImageIO can write the format the extension names to
+// memory, so a tool can refuse a bad output name before it renders.
 void checkImageFormat(const std::filesystem::path& path);
 
 // rgb holds width*height*3 linear floats, row-major, row 0 the top of the
 // image. The format follows the extension. Float formats (.exr, .hdr)
 // get the values as they are; all others get them clamped to [0,1] and
 // quantised to 8 bits with no gamma, so pixel values stay predictable.
-void writeImage(const std::filesystem::path& path, int width, int height, const std::vector<float>& rgb);
+std::string encodeImage(const std::filesystem::path& path, int width, int height, const std::vector<float>& rgb);
 
 // One pixel of a hit buffer; a miss is id 0xFFFFFFFF (kNoHit) with t = +inf.
 struct HitRecord {
@@ -28,7 +31,7 @@ static_assert(sizeof(HitRecord) == 16, "HitRecord is written as OpenEXR's native
 
 // OpenEXR only (anything else is refused): float32 channels "t", "u", "v" and
 // a uint32 channel "id", so ids stay exact.
-void writeHitBuffer(const std::filesystem::path& path, int width, int height, const std::vector<HitRecord>& hits);
+std::string encodeHitBuffer(const std::filesystem::path& path, int width, int height, const std::vector<HitRecord>& hits);
 
 // Reads a hit buffer back by channel name; "id" must be stored as uint32.
 std::vector<HitRecord> readHitBuffer(const std::filesystem::path& path, int& width, int& height);
@@ -43,8 +46,8 @@ struct ConeHitRecord {
 static_assert(sizeof(ConeHitRecord) == 12, "ConeHitRecord is written as OpenEXR's native pixel layout");
 
 // OpenEXR only: uint32 channels "count", "id" and a float32 channel "t".
-void writeConeHitBuffer(const std::filesystem::path& path, int width, int height,
-                        const std::vector<ConeHitRecord>& hits);
+std::string encodeConeHitBuffer(const std::filesystem::path& path, int width, int height,
+                                const std::vector<ConeHitRecord>& hits);
 std::vector<ConeHitRecord> readConeHitBuffer(const std::filesystem::path& path, int& width, int& height);
 
 }  // namespace passtrace

@@ -17,10 +17,12 @@ namespace {
 }  // namespace
 
 void checkImageFormat(const std::filesystem::path& path) { unavailable(path); }
-void writeImage(const std::filesystem::path& path, int, int, const std::vector<float>&) { unavailable(path); }
-void writeHitBuffer(const std::filesystem::path& path, int, int, const std::vector<HitRecord>&) { unavailable(path); }
+std::string encodeImage(const std::filesystem::path& path, int, int, const std::vector<float>&) { unavailable(path); }
+std::string encodeHitBuffer(const std::filesystem::path& path, int, int, const std::vector<HitRecord>&) {
+  unavailable(path);
+}
 std::vector<HitRecord> readHitBuffer(const std::filesystem::path& path, int&, int&) { unavailable(path); }
-void writeConeHitBuffer(const std::filesystem::path& path, int, int, const std::vector<ConeHitRecord>&) {
+std::string encodeConeHitBuffer(const std::filesystem::path& path, int, int, const std::vector<ConeHitRecord>&) {
   unavailable(path);
 }
 std::vector<ConeHitRecord> readConeHitBuffer(const std::filesystem::path& path, int&, int&) { unavailable(path); }

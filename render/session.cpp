@@ -7,7 +7,6 @@
 #include <stdexcept>
 
 #include "passtrace_version.h"
-#include "render/atomic_file.h"
 #include "render/camera.h"
 #include "render/camera_path.h"
 #include "render/cone_session.h"
@@ -16,6 +15,7 @@
 #include "render/heatmap.h"
 #include "render/image_output.h"
 #include "render/memory_check.h"
+#include "render/output_files.h"
 #include "render/renderer.h"
 #include "scenes/scene_export.h"
 #include "scenes/scene_lights.h"
@@ -129,12 +129,15 @@ RunReport exportOnly(const RunSettings& o, Progress& progress) {
     throw std::runtime_error("--export " + o.exportPath + ": unknown format (expected .obj, .gltf or .glb)");
   if (!o.output.empty() || !o.hits.empty() || !o.heatmap.empty() || !o.json.empty())
     throw std::runtime_error("--export writes the scene and renders nothing: -o, --hits, --heatmap and --json do not apply");
+  checkWritable(o.exportPath);
   RunReport report;
   report.version = kVersion;
   progress.stage("loading " + o.scene);
   const Scene scene = loadScene(o.scene, o.sceneOptions);
   progress.stage("writing " + o.exportPath);
-  exportScene(scene, o.exportPath);
+  OutputFiles outputs;
+  for (const ExportedFile& file : exportFiles(scene, o.exportPath)) outputs.write(file.path, file.bytes);
+  outputs.commitAll();
   progress.finish();
   report.scene = scene.name;
   report.triangles = scene.triangles.size();
@@ -239,94 +242,89 @@ RunReport renderSequence(const RunSettings& o, Progress& progress) {
   if (o.output.empty()) checkImageFormat(pattern.string());
   const bool keepsStatic = o.dynamic != DynamicStrategy::Rebuild;
   const int firstScaleExponent = scene.scaleExponent;
-  std::vector<fs::path> written;  // removed again if a later frame fails
-  try {
-    double sumMs = 0, sumRays = 0, sumSteps = 0, sumTests = 0, sumPasses = 0;
-    std::optional<FilterStats> sumFilter;
-    RendererConfig config{o.width, o.height, o.bounces, o.threads, o.gpu, o.shading};
-    std::unique_ptr<DynamicRenderer> dynamic;  // two-trees, merge: kept across frames
-    for (int f = 0; f < o.frames; ++f) {
-      const float time = o.frames == 1 ? start : start + (end - start) * float(f) / float(o.frames - 1);
-      if (f > 0 || time != sceneOptions.time) {
-        sceneOptions.time = time;
-        scene = loadScene(o.scene, sceneOptions);  // in place: the dynamic renderer holds a reference
-      }
-      checkRunFitsInMemory(o.scene, o.renderer, p.structure, scene.triangles.size(), uint64_t(o.width) * uint64_t(o.height),
-                           extraBytesPerPixel(o));
-      if (scene.triangles.empty()) throw std::runtime_error(o.scene + ": the scene has no triangles");
-      // The static tree is built in the first frame's coordinates.
-      if (keepsStatic && scene.scaleExponent != firstScaleExponent)
-        throw std::runtime_error(o.scene + ": the scene's rescaling changes over the frames; use --dynamic rebuild");
-      const CameraSpec view = cameraViews(scene, o).front();
-      makeCameraBasis(view, o.width, o.height);
-      placeLights(scene, o.lights, view);
-      progress.frame(size_t(f), size_t(o.frames));
-      std::unique_ptr<Renderer> rebuilt;
-      Renderer* renderer = nullptr;
-      double buildMs = 0;
-      if (keepsStatic) {
-        if (!dynamic) {
-          dynamic = makeDynamicRenderer(o.dynamic, o.renderer, *p.structure, scene, config);
-          report.staticBuildMs = dynamic->staticBuildMs();
-        }
-        buildMs = dynamic->nextFrame();
-        renderer = dynamic.get();
-        if (o.renderer == RendererId::Gpu && f == 0) renderer->render(view, false);  // llvmpipe compiles on the first draw
-      } else {
-        rebuilt = makeRenderer(o.renderer, p.structure, scene, config);
-        renderer = rebuilt.get();
-        buildMs = renderer->structureStats().buildMs;
-        if (o.renderer == RendererId::Gpu) renderer->render(view, false);  // llvmpipe compiles on the first draw
-      }
-      FrameResult best;
-      std::vector<HitRecord> hits;
-      for (int r = 0; r < o.repeats; ++r) {
-        FrameResult frame = renderer->render(view, r == 0 && !o.hits.empty());
-        if (r == 0) hits = std::move(frame.primaryHits);
-        if (r == 0 || frame.stats.frameMs < best.stats.frameMs) best = std::move(frame);
-      }
-      written.push_back(sequencePath(pattern, f));
-      writeImage(written.back().string(), best.width, best.height, best.rgb);
-      if (!o.hits.empty()) {
-        // Hit distances in the file's units: 2^-k undoes the rescaling exactly.
-        for (HitRecord& h : hits) h.t = std::ldexp(h.t, -scene.scaleExponent);
-        written.push_back(sequencePath(o.hits, f));
-        writeHitBuffer(written.back().string(), best.width, best.height, hits);
-      }
-      const AccelStats stats = renderer->structureStats();
-      SequenceFrame record;
-      record.frame = size_t(f), record.time = time, record.triangles = scene.triangles.size();
-      record.movingTriangles = size_t(std::count(scene.moving.begin(), scene.moving.end(), uint8_t(1)));
-      record.buildMs = buildMs, record.frameMs = best.stats.frameMs, record.rays = double(best.stats.rays);
-      record.totalMs = record.buildMs + record.frameMs;
-      record.mraysPerS = record.frameMs > 0 ? record.rays / record.frameMs / 1000.0 : 0.0;
-      report.sequence.push_back(record);
-      report.structure = stats;
-      sumMs += best.stats.frameMs, sumRays += double(best.stats.rays), sumPasses += double(best.stats.passes);
-      sumSteps += double(best.stats.steps), sumTests += double(best.stats.triangleTests);
-      report.maxStepsPerRay = std::max(report.maxStepsPerRay, best.stats.maxStepsPerRay);
-      report.maxTriangleTestsPerRay = std::max(report.maxTriangleTestsPerRay, best.stats.maxTriangleTestsPerRay);
-      if (best.stats.filter) sumFilter = sumFilter.value_or(FilterStats{}) += *best.stats.filter;
+  OutputFiles outputs;  // every frame's files appear together, after the last frame
+  double sumMs = 0, sumRays = 0, sumSteps = 0, sumTests = 0, sumPasses = 0;
+  std::optional<FilterStats> sumFilter;
+  RendererConfig config{o.width, o.height, o.bounces, o.threads, o.gpu, o.shading};
+  std::unique_ptr<DynamicRenderer> dynamic;  // two-trees, merge: kept across frames
+  for (int f = 0; f < o.frames; ++f) {
+    const float time = o.frames == 1 ? start : start + (end - start) * float(f) / float(o.frames - 1);
+    if (f > 0 || time != sceneOptions.time) {
+      sceneOptions.time = time;
+      scene = loadScene(o.scene, sceneOptions);  // in place: the dynamic renderer holds a reference
     }
-    progress.finish();
-    const double n = double(o.frames);
-    report.dynamic = std::string(dynamicStrategyName(o.dynamic));
-    report.scene = scene.name;
-    report.triangles = scene.triangles.size();
-    describeRun(o, p.structure, report);
-    report.angles = 1;
-    report.rays = sumRays / n, report.frameMs = sumMs / n, report.passes = sumPasses / n;
-    report.mraysPerS = report.frameMs > 0 ? report.rays / report.frameMs / 1000.0 : 0.0;
-    report.steps = sumSteps / n, report.triangleTests = sumTests / n;
-    report.stepsPerRay = sumRays > 0 ? sumSteps / sumRays : 0.0;
-    report.triangleTestsPerRay = sumRays > 0 ? sumTests / sumRays : 0.0;
-    report.dacrt = meanFilter(sumFilter, uint64_t(o.frames));
-    if (!o.json.empty()) writeTextFile(o.json, toJson(report).dump(2) + "\n");
-  } catch (...) {
-    std::error_code ec;
-    for (const fs::path& file : written) fs::remove(file, ec);
-    throw;
+    checkRunFitsInMemory(o.scene, o.renderer, p.structure, scene.triangles.size(), uint64_t(o.width) * uint64_t(o.height),
+                         extraBytesPerPixel(o));
+    if (scene.triangles.empty()) throw std::runtime_error(o.scene + ": the scene has no triangles");
+    // The static tree is built in the first frame's coordinates.
+    if (keepsStatic && scene.scaleExponent != firstScaleExponent)
+      throw std::runtime_error(o.scene + ": the scene's rescaling changes over the frames; use --dynamic rebuild");
+    const CameraSpec view = cameraViews(scene, o).front();
+    makeCameraBasis(view, o.width, o.height);
+    placeLights(scene, o.lights, view);
+    progress.frame(size_t(f), size_t(o.frames));
+    std::unique_ptr<Renderer> rebuilt;
+    Renderer* renderer = nullptr;
+    double buildMs = 0;
+    if (keepsStatic) {
+      if (!dynamic) {
+        dynamic = makeDynamicRenderer(o.dynamic, o.renderer, *p.structure, scene, config);
+        report.staticBuildMs = dynamic->staticBuildMs();
+      }
+      buildMs = dynamic->nextFrame();
+      renderer = dynamic.get();
+      if (o.renderer == RendererId::Gpu && f == 0) renderer->render(view, false);  // llvmpipe compiles on the first draw
+    } else {
+      rebuilt = makeRenderer(o.renderer, p.structure, scene, config);
+      renderer = rebuilt.get();
+      buildMs = renderer->structureStats().buildMs;
+      if (o.renderer == RendererId::Gpu) renderer->render(view, false);  // llvmpipe compiles on the first draw
+    }
+    FrameResult best;
+    std::vector<HitRecord> hits;
+    for (int r = 0; r < o.repeats; ++r) {
+      FrameResult frame = renderer->render(view, r == 0 && !o.hits.empty());
+      if (r == 0) hits = std::move(frame.primaryHits);
+      if (r == 0 || frame.stats.frameMs < best.stats.frameMs) best = std::move(frame);
+    }
+    const fs::path image = sequencePath(pattern, f);
+    outputs.write(image, encodeImage(image, best.width, best.height, best.rgb));
+    if (!o.hits.empty()) {
+      // Hit distances in the file's units: 2^-k undoes the rescaling exactly.
+      for (HitRecord& h : hits) h.t = std::ldexp(h.t, -scene.scaleExponent);
+      const fs::path hitFile = sequencePath(o.hits, f);
+      outputs.write(hitFile, encodeHitBuffer(hitFile, best.width, best.height, hits));
+    }
+    const AccelStats stats = renderer->structureStats();
+    SequenceFrame record;
+    record.frame = size_t(f), record.time = time, record.triangles = scene.triangles.size();
+    record.movingTriangles = size_t(std::count(scene.moving.begin(), scene.moving.end(), uint8_t(1)));
+    record.buildMs = buildMs, record.frameMs = best.stats.frameMs, record.rays = double(best.stats.rays);
+    record.totalMs = record.buildMs + record.frameMs;
+    record.mraysPerS = record.frameMs > 0 ? record.rays / record.frameMs / 1000.0 : 0.0;
+    report.sequence.push_back(record);
+    report.structure = stats;
+    sumMs += best.stats.frameMs, sumRays += double(best.stats.rays), sumPasses += double(best.stats.passes);
+    sumSteps += double(best.stats.steps), sumTests += double(best.stats.triangleTests);
+    report.maxStepsPerRay = std::max(report.maxStepsPerRay, best.stats.maxStepsPerRay);
+    report.maxTriangleTestsPerRay = std::max(report.maxTriangleTestsPerRay, best.stats.maxTriangleTestsPerRay);
+    if (best.stats.filter) sumFilter = sumFilter.value_or(FilterStats{}) += *best.stats.filter;
   }
+  progress.finish();
+  const double n = double(o.frames);
+  report.dynamic = std::string(dynamicStrategyName(o.dynamic));
+  report.scene = scene.name;
+  report.triangles = scene.triangles.size();
+  describeRun(o, p.structure, report);
+  report.angles = 1;
+  report.rays = sumRays / n, report.frameMs = sumMs / n, report.passes = sumPasses / n;
+  report.mraysPerS = report.frameMs > 0 ? report.rays / report.frameMs / 1000.0 : 0.0;
+  report.steps = sumSteps / n, report.triangleTests = sumTests / n;
+  report.stepsPerRay = sumRays > 0 ? sumSteps / sumRays : 0.0;
+  report.triangleTestsPerRay = sumRays > 0 ? sumTests / sumRays : 0.0;
+  report.dacrt = meanFilter(sumFilter, uint64_t(o.frames));
+  if (!o.json.empty()) outputs.write(o.json, toJson(report).dump(2) + "\n");
+  outputs.commitAll();
   return report;
 }
 
@@ -356,13 +354,15 @@ RunReport runSession(const RunSettings& o, Progress& progress) {
   const std::vector<CameraSpec> views = cameraViews(scene, o);
   for (const CameraSpec& v : views) makeCameraBasis(v, o.width, o.height);  // reject a bad camera before building
   placeLights(scene, o.lights, views.front());
+  OutputFiles outputs;  // every file of the run appears together, at the end
   if (o.cone) {
-    traceConeRun(o, *structure, scene, views, report, progress);
+    traceConeRun(o, *structure, scene, views, report, progress, outputs);
     report.scene = scene.name;
     report.triangles = scene.triangles.size();
     describeRun(o, structure, report);
     report.angles = views.size();
-    if (!o.json.empty()) writeTextFile(o.json, toJson(report).dump(2) + "\n");
+    if (!o.json.empty()) outputs.write(o.json, toJson(report).dump(2) + "\n");
+    outputs.commitAll();
     return report;
   }
 
@@ -405,7 +405,10 @@ RunReport runSession(const RunSettings& o, Progress& progress) {
       first.width = best.width, first.height = best.height, first.rgb = best.rgb, first.stats = best.stats;
       first.steps = best.steps;
     }
-    if (o.dumpImages && !o.output.empty()) writeImage(numberedPath(o.output, int(k)), best.width, best.height, best.rgb);
+    if (o.dumpImages && !o.output.empty()) {
+      const fs::path dump = numberedPath(o.output, int(k));
+      outputs.write(dump, encodeImage(dump, best.width, best.height, best.rgb));
+    }
   }
   progress.finish();
 
@@ -427,14 +430,16 @@ RunReport runSession(const RunSettings& o, Progress& progress) {
   report.maxTriangleTestsPerRay = total.maxTriangleTestsPerRay;
   report.dacrt = meanFilter(total.filter, uint64_t(views.size()));
 
-  if (!o.output.empty()) writeImage(o.output, first.width, first.height, first.rgb);
+  if (!o.output.empty()) outputs.write(o.output, encodeImage(o.output, first.width, first.height, first.rgb));
   if (!o.hits.empty()) {
     // Hit distances in the file's units: 2^-k undoes the rescaling exactly.
     for (HitRecord& h : first.primaryHits) h.t = std::ldexp(h.t, -scene.scaleExponent);
-    writeHitBuffer(o.hits, first.width, first.height, first.primaryHits);
+    outputs.write(o.hits, encodeHitBuffer(o.hits, first.width, first.height, first.primaryHits));
   }
-  if (!o.heatmap.empty()) writeImage(o.heatmap, first.width, first.height, heatmapRgb(first.steps));
-  if (!o.json.empty()) writeTextFile(o.json, toJson(report).dump(2) + "\n");
+  if (!o.heatmap.empty())
+    outputs.write(o.heatmap, encodeImage(o.heatmap, first.width, first.height, heatmapRgb(first.steps)));
+  if (!o.json.empty()) outputs.write(o.json, toJson(report).dump(2) + "\n");
+  outputs.commitAll();
   return report;
 }
 

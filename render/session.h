@@ -54,7 +54,8 @@ struct RunSettings {
 };
 
 // Throws std::runtime_error (or a subclass) with a one-line message on any
-// bad input or failure; outputs are written only after every frame rendered.
+// bad input or failure. The outputs appear together once the whole run has
+// succeeded, or none of them (render/output_files.h).
 RunReport runSession(const RunSettings& settings, Progress& progress);
 
 }  // namespace passtrace

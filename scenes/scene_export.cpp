@@ -6,11 +6,9 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <system_error>
 #include <vector>
 
 #include "scenes/tessellate.h"
@@ -44,32 +42,6 @@ std::string triple(glm::vec3 v) { return decimal(v.x) + " " + decimal(v.y) + " "
 glm::vec3 fileUnits(const Scene& scene, glm::vec3 p) {
   return {std::ldexp(p.x, -scene.scaleExponent), std::ldexp(p.y, -scene.scaleExponent),
           std::ldexp(p.z, -scene.scaleExponent)};
-}
-
-// Writes `text` to a temporary file beside `file`; the caller renames it.
-// Errors name `exported`, the file the user asked for.
-fs::path writeBeside(const fs::path& file, const std::string& text, const fs::path& exported) {
-  fs::path tmp = file;
-  tmp += ".passtrace-export.tmp";
-  std::ofstream out(tmp, std::ios::binary);
-  if (!out) fail(exported, "cannot open " + tmp.string() + " for writing");
-  out.write(text.data(), std::streamsize(text.size()));
-  out.close();
-  if (!out) {
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    fail(exported, "writing " + tmp.string() + " failed");
-  }
-  return tmp;
-}
-
-void moveInto(const fs::path& tmp, const fs::path& file) {
-  std::error_code ec;
-  fs::rename(tmp, file, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    fail(file, "cannot rename the written file into place");
-  }
 }
 
 // --- OBJ + MTL -------------------------------------------------------------------
@@ -112,20 +84,10 @@ std::string objText(const Scene& scene, const std::string& mtlName) {
   return out;
 }
 
-void exportObj(const Scene& scene, const fs::path& file) {
+std::vector<ExportedFile> exportObj(const Scene& scene, const fs::path& file) {
   fs::path mtl = file;
   mtl.replace_extension(".mtl");
-  const fs::path mtlTmp = writeBeside(mtl, mtlText(scene), file);
-  fs::path objTmp;
-  try {
-    objTmp = writeBeside(file, objText(scene, mtl.filename().string()), file);
-  } catch (...) {
-    std::error_code ec;
-    fs::remove(mtlTmp, ec);
-    throw;
-  }
-  moveInto(mtlTmp, mtl);
-  moveInto(objTmp, file);
+  return {{mtl, mtlText(scene)}, {file, objText(scene, mtl.filename().string())}};
 }
 
 // --- glTF ------------------------------------------------------------------------
@@ -210,12 +172,12 @@ tinygltf::Model gltfModel(const Scene& scene) {
   return model;
 }
 
-void exportGltf(const Scene& scene, const fs::path& file, bool binary) {
+ExportedFile exportGltf(const Scene& scene, const fs::path& file, bool binary) {
   const tinygltf::Model model = gltfModel(scene);
   std::ostringstream out;
   tinygltf::TinyGLTF writer;
   if (!writer.WriteGltfSceneToStream(&model, out, /*prettyPrint=*/!binary, binary)) fail(file, "tinygltf could not write the model");
-  moveInto(writeBeside(file, out.str(), file), file);
+  return {file, out.str()};
 }
 
 }  // namespace
@@ -225,12 +187,12 @@ bool isExportFormat(const fs::path& file) {
   return ext == ".obj" || ext == ".gltf" || ext == ".glb";
 }
 
-void exportScene(const Scene& scene, const fs::path& file) {
+std::vector<ExportedFile> exportFiles(const Scene& scene, const fs::path& file) {
   const std::string ext = lowerExtension(file);
-  if (ext == ".obj") exportObj(scene, file);
-  else if (ext == ".gltf") exportGltf(scene, file, false);
-  else if (ext == ".glb") exportGltf(scene, file, true);
-  else fail(file, "unknown format '" + ext + "' (expected .obj, .gltf or .glb)");
+  if (ext == ".obj") return exportObj(scene, file);
+  if (ext == ".gltf") return {exportGltf(scene, file, false)};
+  if (ext == ".glb") return {exportGltf(scene, file, true)};
+  fail(file, "unknown format '" + ext + "' (expected .obj, .gltf or .glb)");
 }
 
 }  // namespace passtrace

@@ -19,19 +19,28 @@
 // lost). The point light and the view are not written (loading the export
 // frames it as any file without them).
 //
-// The output appears whole or not at all: it is written beside the target
-// and renamed. Errors (unknown extension, unwritable path) throw
-// std::runtime_error with a one-line message naming the file.
+// The files are returned, not written: the run's OutputFiles
+// (render/output_files.h) writes them with its other outputs. Errors (an
+// unknown extension) throw std::runtime_error with a one-line message naming
+// the file.
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "scenes/scene.h"
 
 namespace passtrace {
 
-// True for the extensions exportScene writes: .obj, .gltf, .glb (any case).
+// True for the extensions exportFiles writes: .obj, .gltf, .glb (any case).
 bool isExportFormat(const std::filesystem::path& file);
 
-void exportScene(const Scene& scene, const std::filesystem::path& file);
+struct ExportedFile {
+  std::filesystem::path path;
+  std::string bytes;
+};
+
+// `file` and, for .obj, the FILE.mtl beside it.
+std::vector<ExportedFile> exportFiles(const Scene& scene, const std::filesystem::path& file);
 
 }  // namespace passtrace

@@ -55,6 +55,7 @@ import time
 REPO = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 import passtrace_registry  # noqa: E402
+from bench_report import write_atomically  # noqa: E402
 
 SCENES = ["cows", "robots", "kitchen", "bunny", "cornell"]
 BART_SCENES = {"robots", "kitchen"}
@@ -267,9 +268,7 @@ def read_json(path):
 
 
 def write_json_atomic(path, data):
-    tmp = path.with_name("." + path.name + ".tmp")
-    tmp.write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
-    os.replace(tmp, path)
+    write_atomically(path, json.dumps(data, indent=1, sort_keys=True) + "\n")
 
 
 # Stream-renderer runs (-r 2) are made at the thesis's -l 20, the setting

@@ -14,6 +14,7 @@ them beside the seed's Tables 1-2 (../shared/docs/seed-systems.md, "Seed 000";
 the seed's TEAPOT and BUNNY columns) and marks its claims holds / does not
 hold here. The teapot is not among passtrace's scenes; the thesis's are.
 """
+from bench_report import write_atomically
 
 APERTURES = ["0.04", "0.5", "1.5", "2.5", "5"]
 RAY_FACTORS = [2, 4, 8]  # side multipliers: 4, 16, 64 rays per base pixel
@@ -174,7 +175,7 @@ def write_report(out, results, records, scenes, size):
     if failed:
         lines += ["## Failed runs", ""] + [f"- `{k}`: {e}" for k, e in failed] + [""]
     lines += ["## Commands", "", "Each run's command line is in `results.json` (`runs[].command`)."]
-    (out / "REPORT.md").write_text("\n".join(lines) + "\n")
+    write_atomically(out / "REPORT.md", "\n".join(lines) + "\n")
 
 
 def main(args, binary, registry, out, bart, bart_ok, bench, command):

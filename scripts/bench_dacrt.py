@@ -28,6 +28,7 @@ run of this script are what the report compares with the seed's.
 import statistics
 
 from report_tables import num, md_table, result, verdict
+from bench_report import write_atomically
 
 SCENES = [
     ("cows", ["-s", "cows"]),
@@ -329,7 +330,7 @@ def write_report(out_dir, results, records):
     if failed:
         lines += ["## Failed runs", ""] + [f"- `{k}`: {e}" for k, e in failed] + [""]
     lines += ["## Commands", "", "Each run's command line is in `results.json` (`runs[].command`)."]
-    (out_dir / "REPORT.md").write_text("\n".join(lines) + "\n")
+    write_atomically(out_dir / "REPORT.md", "\n".join(lines) + "\n")
 
 
 # ---------------------------------------------------------------- the driver

@@ -32,6 +32,7 @@ import pathlib
 import statistics
 
 from report_tables import num, md_table, result, field, verdict
+from bench_report import write_atomically
 
 # The seed's traversal names, and passtrace's structure and stack size for each.
 TRAVERSALS = [
@@ -433,7 +434,7 @@ def write_report(out_dir, results, records):
     if failed:
         lines += ["## Failed runs", ""] + [f"- `{k}`: {e}" for k, e in failed] + [""]
     lines += ["## Commands", "", "Each run's command line is in `results.json` (`runs[].command`)."]
-    (out_dir / "REPORT.md").write_text("\n".join(lines) + "\n")
+    write_atomically(out_dir / "REPORT.md", "\n".join(lines) + "\n")
 
 
 # ---------------------------------------------------------------- the driver

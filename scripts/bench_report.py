@@ -6,6 +6,7 @@ report from the finished runs in runs/ without running anything). Only
 REPORT.md, results.csv and the PNGs are kept in git.
 """
 import csv
+import io
 import json
 import os
 import pathlib
@@ -106,8 +107,25 @@ def estimate_full(results, modes, scene_defaults):
     return total, missing
 
 
+def write_atomically(path, text):
+    """Writes text to path whole or not at all: a temporary file beside it,
+    flushed and synced, then renamed over it; removed again on any error
+    (a full disk, say), so no record is ever half-written."""
+    path = pathlib.Path(path)
+    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
+    try:
+        with open(tmp, "w", newline="") as f:
+            f.write(text)
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
+
+
 def write_csv(path, runs, by):
-    with open(path, "w", newline="") as f:
+    with io.StringIO(newline="") as f:
         w = csv.DictWriter(f, fieldnames=CSV_FIELDS)
         w.writeheader()
         for run in runs:
@@ -119,6 +137,7 @@ def write_csv(path, runs, by):
             ratio = ratio_to_embree(by, run)
             row["mrays_ratio_to_embree"] = round(ratio, 4) if ratio is not None else None
             w.writerow(row)
+        write_atomically(path, f.getvalue())
 
 
 def plot_scene(out, scene, by, structures, params):
@@ -445,15 +464,13 @@ def write_report(out, results, modes, scene_defaults, plots):
             L.append(run["command"])
     L.append("```")
     L.append("")
-    (out / "REPORT.md").write_text("\n".join(L))
+    write_atomically(out / "REPORT.md", "\n".join(L))
 
 
 def write_all(out, results, modes, scene_defaults):
     out = pathlib.Path(out)
     runs = results["runs"]
-    tmp = out / ".results.json.tmp"
-    tmp.write_text(json.dumps(results, indent=1, sort_keys=True) + "\n")
-    os.replace(tmp, out / "results.json")
+    write_atomically(out / "results.json", json.dumps(results, indent=1, sort_keys=True) + "\n")
     by = index(runs)
     write_csv(out / "results.csv", runs, by)
     plots = {s: plot_scene(out, s, by, results["parameters"]["structures"], results["parameters"])

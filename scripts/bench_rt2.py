@@ -23,6 +23,7 @@ lacks are listed as missing, not run.
 import statistics
 
 from report_tables import field, md_table, num, result, verdict
+from bench_report import write_atomically
 
 # The seed's structure names, with passtrace's row and the arguments that select its builder.
 STRUCTURES = [
@@ -237,7 +238,7 @@ def write_report(out_dir, results, records):
     if failed:
         lines += ["## Failed runs", ""] + [f"- `{k}`: {e}" for k, e in failed] + [""]
     lines += ["## Commands", "", "Each run's command line is in `results.json` (`runs[].command`)."]
-    (out_dir / "REPORT.md").write_text("\n".join(lines) + "\n")
+    write_atomically(out_dir / "REPORT.md", "\n".join(lines) + "\n")
 
 
 # ---------------------------------------------------------------- the driver

@@ -32,6 +32,7 @@ import json
 import os
 import pathlib
 import subprocess
+from bench_report import write_atomically
 
 SCENES = ["bunny", "kitchen", "robots"]
 BART = {"kitchen", "robots"}
@@ -358,7 +359,7 @@ def write_report(out_dir, results, records, baselines, scenes):
         lines += ["## Failed runs", ""] + [f"- `{k}`: {e}" for k, e in failed] + [""]
     lines += ["## Commands", "", "Each run's command line is in `results.json` (`runs[].command`); the "
               "baselines' output is in `results.json` (`baselines`)."]
-    (out_dir / "REPORT.md").write_text("\n".join(lines) + "\n")
+    write_atomically(out_dir / "REPORT.md", "\n".join(lines) + "\n")
 
 
 # ---------------------------------------------------------------- the driver

@@ -39,7 +39,7 @@ TEST_F(Cli, ExportThenRenderGivesTheSameHitIds) {
 TEST_F(Cli, ExportErrorsWriteNothing) {
   expectOneLineError(run("-s cornell --export " + path("x.ply")), "x.ply: unknown format");
   expectOneLineError(run("-s cornell --export " + path("x.obj") + " -o " + path("x.png")), "--export");
-  expectOneLineError(run("-s cornell --export " + path("nowhere/x.obj")), "x.obj: cannot export");
+  expectOneLineError(run("-s cornell --export " + path("nowhere/x.obj")), "x.obj: directory");
   expectOneLineError(run("-s " + path("missing.obj") + " --export " + path("x.obj")), "missing.obj");
 }
 

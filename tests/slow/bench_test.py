@@ -37,11 +37,30 @@ def run_bench(binary, out, *extra):
     return subprocess.run(cmd, capture_output=True, text=True, timeout=280)
 
 
+def check_write_atomically():
+    """A record is replaced whole or not at all: a write that fails part-way
+    (here: text the encoder refuses) keeps the old
+    record and leaves no temporary file."""
+    from bench_report import write_atomically
+    with tempfile.TemporaryDirectory() as d:
+        path = pathlib.Path(d) / "results.json"
+        write_atomically(path, "old\n")
+        try:
+            write_atomically(path, "n\udcffew")  # a lone surrogate: the UTF-8 write raises
+            check(False, "a failed record write raises")
+        except UnicodeEncodeError:
+            check(True, "a failed record write raises")
+        check(path.read_text() == "old\n", "a failed record write keeps the old record")
+        check(sorted(p.name for p in pathlib.Path(d).iterdir()) == ["results.json"],
+              "a failed record write leaves no temporary file")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--binary", default=str(REPO / "build" / "passtrace"))
     args = parser.parse_args()
 
+    check_write_atomically()
     import bench  # the modes, from the script itself
     import passtrace_registry
     registry = passtrace_registry.load(args.binary)

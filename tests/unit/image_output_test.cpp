@@ -1,4 +1,4 @@
-// Images and hit buffers written through OpenImageIO, and atomic replacement.
+// Images and hit buffers encoded with OpenImageIO and written as a run writes them.
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include "render/image_output.h"
+#include "render/output_files.h"
 
 namespace passtrace {
 namespace {
@@ -68,6 +69,19 @@ std::string errorOf(Write&& write) {
 }
 
 bool startsWith(const std::string& text, const std::string& prefix) { return text.rfind(prefix, 0) == 0; }
+
+// One file written as a run writes it: encoded, then put in place.
+void commitOne(const fs::path& path, const std::string& bytes) {
+  OutputFiles outputs;
+  outputs.write(path, bytes);
+  outputs.commitAll();
+}
+void writeImage(const fs::path& path, int width, int height, const std::vector<float>& rgb) {
+  commitOne(path, encodeImage(path, width, height, rgb));
+}
+void writeHitBuffer(const fs::path& path, int width, int height, const std::vector<HitRecord>& hits) {
+  commitOne(path, encodeHitBuffer(path, width, height, hits));
+}
 
 TEST(ImageOutput, PngRoundTripClampsWithoutGamma) {
   const TempDir dir;
@@ -208,16 +222,20 @@ TEST(ImageOutput, FailuresLeaveNothingBehind) {
   const fs::path unknown = dir / "out.unknownformat";
   EXPECT_TRUE(startsWith(errorOf([&] { writeImage(unknown, 1, 1, black); }), unknown.string() + ": "));
 
+  // A writer that cannot write to memory could not report a full disk.
+  const fs::path noMemoryWriter = dir / "out.sgi";
+  EXPECT_NE(errorOf([&] { checkImageFormat(noMemoryWriter); }).find("cannot write to memory"), std::string::npos);
+
   const fs::path wrongSize = dir / "small.png";
   EXPECT_EQ(errorOf([&] { writeImage(wrongSize, 2, 2, black); }),
             wrongSize.string() + ": expected 12 values for 2x2, got 3");
   EXPECT_TRUE(dir.entries().empty());
 
-  // The final name is taken by a directory: the write succeeds, the rename
+  // The final name is taken by a directory: refused before anything is written.
   // fails, and the temporary file must go.
   const fs::path taken = dir / "taken.png";
   fs::create_directory(taken);
-  EXPECT_TRUE(startsWith(errorOf([&] { writeImage(taken, 1, 1, black); }), taken.string() + ": cannot rename"));
+  EXPECT_TRUE(startsWith(errorOf([&] { writeImage(taken, 1, 1, black); }), taken.string() + ": is a directory"));
   EXPECT_EQ(dir.entries(), std::set<std::string>{"taken.png"});
   EXPECT_TRUE(fs::is_directory(taken));
 }

@@ -34,10 +34,10 @@ TEST(ImageOutputUnavailable, EveryCallIsAOneLineErrorAndWritesNothing) {
   fs::remove(exr);
   int width = 0, height = 0;
   expectUnavailable(png, [&] { checkImageFormat(png); });
-  expectUnavailable(png, [&] { writeImage(png, 1, 1, {0.0f, 0.0f, 0.0f}); });
-  expectUnavailable(exr, [&] { writeHitBuffer(exr, 1, 1, {HitRecord{1.0f, 0.0f, 0.0f, 0u}}); });
+  expectUnavailable(png, [&] { encodeImage(png, 1, 1, {0.0f, 0.0f, 0.0f}); });
+  expectUnavailable(exr, [&] { encodeHitBuffer(exr, 1, 1, {HitRecord{1.0f, 0.0f, 0.0f, 0u}}); });
   expectUnavailable(exr, [&] { readHitBuffer(exr, width, height); });
-  expectUnavailable(exr, [&] { writeConeHitBuffer(exr, 1, 1, {ConeHitRecord{}}); });
+  expectUnavailable(exr, [&] { encodeConeHitBuffer(exr, 1, 1, {ConeHitRecord{}}); });
   expectUnavailable(exr, [&] { readConeHitBuffer(exr, width, height); });
 }
 
