@@ -166,11 +166,17 @@ TEST_F(PlyReaderTest, StanfordScanLayout) {
   }
 }
 
+// An ASCII header: `vertices` of x y z and the given further properties,
+// then the given lines (faces or strips).
+std::string asciiHeader(int vertices, const std::string& vertexExtras, const std::string& then) {
+  return "ply\nformat ascii 1.0\nelement vertex " + std::to_string(vertices) +
+         "\nproperty float x\nproperty float y\nproperty float z\n" + vertexExtras + then + "end_header\n";
+}
+
 TEST_F(PlyReaderTest, NormalsWhenTheFileHasThem) {
-  const std::string text =
-      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-      "property float nx\nproperty float ny\nproperty float nz\nelement face 1\n"
-      "property list uchar int vertex_indices\nend_header\n0 0 0 0 0 2\n1 0 0 0 0 0\n0 1 0 0 1 0\n3 0 1 2\n";
+  const std::string text = asciiHeader(3, "property float nx\nproperty float ny\nproperty float nz\n",
+                                       "element face 1\nproperty list uchar int vertex_indices\n") +
+                           "0 0 0 0 0 2\n1 0 0 0 0 0\n0 1 0 0 1 0\n3 0 1 2\n";
   const Scene s = loadPly(write("n.ply", text));
   ASSERT_EQ(s.vertexNormals.size(), 1u);
   EXPECT_EQ(s.vertexNormals[0][0], glm::vec3(0, 0, 1));  // normalised
@@ -179,10 +185,8 @@ TEST_F(PlyReaderTest, NormalsWhenTheFileHasThem) {
 }
 
 TEST_F(PlyReaderTest, TriangleStrips) {
-  const std::string text =
-      "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\n"
-      "element tristrips 1\nproperty list int int vertex_indices\nend_header\n"
-      "0 0 0\n1 0 0\n0 1 0\n1 1 0\n2 2 0\n8 0 1 2 3 -1 1 3 4\n";
+  const std::string text = asciiHeader(5, "", "element tristrips 1\nproperty list int int vertex_indices\n") +
+                           "0 0 0\n1 0 0\n0 1 0\n1 1 0\n2 2 0\n8 0 1 2 3 -1 1 3 4\n";
   const Scene s = loadPly(write("strip.ply", text));
   const glm::vec3 v[] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 2, 0}};
   expectTriangles(s, {{v[0], v[1], v[2]}, {v[2], v[1], v[3]}, {v[1], v[3], v[4]}});
@@ -196,9 +200,7 @@ TEST_F(PlyReaderTest, BlankLinesAndCrlfInAsciiBodies) {
   EXPECT_EQ(loadPly(write("crlf.ply", text)).triangles.size(), 1u);
 }
 
-const std::string kTriangleHeader =
-    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-    "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+const std::string kTriangleHeader = asciiHeader(3, "", "element face 1\nproperty list uchar int vertex_indices\n");
 
 TEST_F(PlyReaderTest, OutOfRangeIndexIsAnErrorNamingTheFace) {
   EXPECT_EQ(errorOf(kTriangleHeader + "0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n"), ":13: face 0 names vertex 7 of 3");
@@ -238,9 +240,8 @@ TEST_F(PlyReaderTest, HugeCountsInASmallFile) {
 }
 
 TEST_F(PlyReaderTest, FacesWithoutIndexListAreAnError) {
-  const std::string text = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                           "property float z\nelement face 1\nproperty list uchar int corners\nend_header\n"
-                           "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  const std::string text =
+      asciiHeader(3, "", "element face 1\nproperty list uchar int corners\n") + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
   EXPECT_EQ(errorOf(text), ":7: element 'face' has no list vertex_indices (or vertex_index)");
 }
 
