@@ -18,7 +18,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
-#include "scenes/ply_header.h"
+#include "scenes/assimp_index_watch.h"
 #include "scenes/scene_error.h"
 #include "scenes/scene_registry.h"
 #include "scenes/tessellate.h"
@@ -55,7 +55,8 @@ struct Placed {
 class AssimpBuilder {
  public:
   AssimpBuilder(const fs::path& file, const aiScene& scene)
-      : file_(file), ai_(scene), formatHasMaterials_(!kWithoutMaterials.contains(lowerExtension(file))) {}
+      : file_(file), ai_(scene), formatHasMaterials_(!kWithoutMaterials.contains(lowerExtension(file))),
+        isX_(lowerExtension(file) == ".x") {}
 
   // Before triangulation: the walk order, each face's size, and the
   // triangle count that building would reach.
@@ -68,6 +69,10 @@ class AssimpBuilder {
         for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
           const unsigned n = mesh.mFaces[f].mNumIndices;
           if (n == 0) fail("mesh " + std::to_string(p.node->mMeshes[k]) + " face " + std::to_string(f) + " has no corners");
+          // Assimp drops an X face's out-of-range indices (assimp_index_watch.h).
+          if (n < 3 && isX_)
+            fail("mesh " + std::to_string(p.node->mMeshes[k]) + " face " + std::to_string(f) + " has " +
+                 std::to_string(n) + " corners: a face names a vertex out of range");
           if (n > kMaxFaceCorners)
             fail("mesh " + std::to_string(p.node->mMeshes[k]) + " face " + std::to_string(f) + " has " +
                  std::to_string(n) + " corners; at most " + std::to_string(kMaxFaceCorners) + " are supported");
@@ -111,9 +116,10 @@ class AssimpBuilder {
 
   fs::path file_;
   const aiScene& ai_;
-  // PLY, STL and OFF hold no materials: Assimp invents one, white or grey.
-  static inline const std::set<std::string> kWithoutMaterials = {".ply", ".stl", ".off"};
+  // STL holds no materials: Assimp invents one, white or grey.
+  static inline const std::set<std::string> kWithoutMaterials = {".stl"};
   bool formatHasMaterials_;
+  bool isX_;
   std::vector<Placed> placed_;
   Scene scene_;
   std::vector<std::array<glm::vec3, 3>> normals_;
@@ -210,7 +216,7 @@ std::string assimpError(const Assimp::Importer& importer, const char* fallback) 
 }  // namespace
 
 const std::vector<std::string>& assimpExtensions() {
-  static const std::vector<std::string> extensions = {".ply", ".stl", ".fbx", ".dae", ".3ds", ".off", ".x"};
+  static const std::vector<std::string> extensions = {".stl", ".fbx", ".dae", ".3ds", ".x"};
   return extensions;
 }
 
@@ -220,14 +226,14 @@ Scene loadWithAssimp(const fs::path& path) {
   if (!S_ISREG(info.st_mode)) throw SceneError(path, "cannot open: not a regular file");
   if (static_cast<std::uintmax_t>(info.st_size) > kMaxFileBytes)
     throw SceneError(path, "file too large (" + std::to_string(info.st_size) + " bytes; the limit is 2 GiB)");
-  // Assimp's validation would call a PLY point cloud "Mesh contains no faces".
-  if (lowerExtension(path) == ".ply" && checkPlyHeader(path).faces == 0) throw SceneError(path, "no triangles");
 
   Assimp::Importer importer;
   try {
     // Read untriangulated first, so that a huge polygon is refused before
     // ear clipping spends quadratic time on it.
+    const AssimpIndexWatch watch;
     const aiScene* read = importer.ReadFile(path.string(), aiProcess_ValidateDataStructure);
+    if (!watch.finding().empty()) throw SceneError(path, watch.finding());
     if (read == nullptr) throw SceneError(path, assimpError(importer, "Assimp could not read the file"));
     AssimpBuilder(path, *read).checkBeforeTriangulating();
     // Assimp 5.2's triangulation asserts (an abort) when a mesh's primitive

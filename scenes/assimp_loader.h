@@ -1,10 +1,10 @@
 #pragma once
-// The formats passtrace does not read itself (PLY, STL, FBX, COLLADA, 3DS,
-// ...), read with the Open Asset Import Library (Assimp) and chosen by file
+// The formats passtrace does not read itself (STL, FBX, COLLADA, 3DS, X),
+// read with the Open Asset Import Library (Assimp) and chosen by file
 // extension (assimpExtensions). Errors are "FILE: reason", Assimp's own
-// message as the reason; a PLY file's header is checked first
-// (ply_header.h: "FILE:LINE: reason"), so that element counts the file cannot
-// hold never reach Assimp's allocations.
+// message as the reason. PLY and OFF are read by passtrace (ply_reader.h,
+// off_reader.h): Assimp misreads some valid binary PLY bodies and clamps
+// OFF's out-of-range indices.
 //
 // Geometry: Assimp triangulates polygons (aiProcess_Triangulate: a convex
 // quad becomes (0 1 2), (0 2 3) as in the OBJ loader; larger polygons by ear
@@ -22,7 +22,7 @@
 // zero-area triangles are kept.
 //
 // Materials: each Assimp material's diffuse colour; in formats without
-// materials (PLY, STL, OFF), and for Assimp's invented "DefaultMaterial",
+// materials (STL), and for Assimp's invented "DefaultMaterial",
 // Material{}, the OBJ loader's default. Normals: kept when a mesh has them,
 // the geometric normal for the others. View and light are framed on the
 // bounds as for OBJ (a file's cameras and lights are not read).
@@ -35,7 +35,7 @@
 
 namespace passtrace {
 
-// The lower-case extensions (".ply", ...) read through Assimp.
+// The lower-case extensions (".stl", ...) read through Assimp.
 const std::vector<std::string>& assimpExtensions();
 
 // The scene's name is the file's stem.

@@ -1,30 +1,53 @@
 #pragma once
-// A PLY header read and checked before Assimp sees the file. Assimp sizes its
-// arrays from the header's element counts, so "element vertex 4000000000" in
-// a 300-byte file makes it allocate gigabytes (or fail with a bare
-// std::bad_alloc), and it reads a property of an unknown type as garbage
-// without complaint. This check rejects both with "FILE:LINE: reason":
-// unknown formats and types, a second format line, control characters,
-// names that are not words, malformed lines, a header without end_header
-// in its first 1 MiB, and element counts the rest of the file is too short to
-// hold. The body is walked too: in a binary file every instance's bytes,
-// lists included, so that a truncated file is named as such; in an ASCII
-// file every instance's line, which must hold exactly its values (Assimp
-// sizes a list from its length before reading it). After it, what Assimp
-// allocates is bounded by a small multiple of the file size.
+// A PLY header, parsed and checked before any of the body is read (by
+// ply_reader.h): "FILE:LINE: reason" for unknown formats and types, a second
+// format line, control characters, names that are not words, malformed
+// lines, a header without end_header in its first 1 MiB, a vertex element
+// without x, y and z, and element counts the rest of the file is too short
+// to hold (so a header claiming 2^31 vertices in a 100-byte file allocates
+// nothing). The body begins right after the '\n' that ends end_header's
+// line, whatever its first byte is.
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
 
 namespace passtrace {
 
-struct PlyHeaderSummary {
-  bool binary = false;
-  uint64_t vertices = 0;  // instances of element "vertex"
-  uint64_t faces = 0;     // instances of elements "face" and "tristrips"
+enum class PlyFormat { Ascii, BinaryLittleEndian, BinaryBigEndian };
+
+// The scalar types, each under both of the names in use (char/int8, ...).
+enum class PlyType : uint8_t { Int8, Uint8, Int16, Uint16, Int32, Uint32, Float32, Float64 };
+
+std::size_t plyTypeBytes(PlyType type);
+bool plyTypeIsInteger(PlyType type);
+const char* plyTypeName(PlyType type);
+
+struct PlyProperty {
+  std::string name;
+  PlyType type = PlyType::Float32;  // a list's item type
+  bool list = false;
+  PlyType countType = PlyType::Uint8;  // a list's count type: an integer type
 };
 
-// Throws SceneError for a header Assimp should not be given.
-PlyHeaderSummary checkPlyHeader(const std::filesystem::path& file);
+struct PlyElement {
+  std::string name;
+  uint64_t count = 0;
+  std::size_t line = 0;  // of its "element" line
+  std::vector<PlyProperty> properties;
+};
+
+struct PlyHeader {
+  PlyFormat format = PlyFormat::Ascii;
+  std::vector<PlyElement> elements;
+  std::size_t bodyOffset = 0;  // the body's first byte in the file
+  std::size_t bodyLine = 0;    // the body's first line (ASCII)
+};
+
+// `data` is the whole file. Throws SceneError.
+PlyHeader parsePlyHeader(const std::filesystem::path& file, std::string_view data);
 
 }  // namespace passtrace

@@ -19,6 +19,8 @@
 #include "scenes/cows_scene.h"
 #include "scenes/gltf_loader.h"
 #include "scenes/obj_loader.h"
+#include "scenes/off_reader.h"
+#include "scenes/ply_reader.h"
 #include "scenes/scene_error.h"
 #include "scenes/scene_scale.h"
 
@@ -79,8 +81,9 @@ Scene loadFile(const fs::path& path, const SceneOptions& options) {
   if (extension == ".gltf" || extension == ".glb") return loadGltf(path, options.time);
   const std::vector<std::string>& viaAssimp = assimpExtensions();
   if (std::find(viaAssimp.begin(), viaAssimp.end(), extension) != viaAssimp.end()) return loadWithAssimp(path);
-  if (extension != ".obj") throw SceneError(path, "unsupported scene format '" + extension + "'");
-  Scene scene = loadObj(path);
+  if (extension != ".obj" && extension != ".ply" && extension != ".off")
+    throw SceneError(path, "unsupported scene format '" + extension + "'");
+  Scene scene = extension == ".ply" ? loadPly(path) : extension == ".off" ? loadOff(path) : loadObj(path);
   frame(scene);
   return scene;
 }

@@ -1,8 +1,5 @@
 #include "scenes/text_reader.h"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include <cerrno>
 #include <charconv>
@@ -11,6 +8,7 @@
 #include <cstring>
 #include <limits>
 
+#include "scenes/file_bytes.h"
 #include "scenes/scene_error.h"
 
 namespace passtrace {
@@ -23,28 +21,7 @@ bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' ||
 }  // namespace
 
 TextReader::TextReader(const std::filesystem::path& file) : file_(file) {
-  // O_NONBLOCK: opening a FIFO must not wait for a writer.
-  const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-  if (fd < 0) throw SceneError(file, std::string("cannot open: ") + std::strerror(errno));
-  struct Closer {
-    int fd;
-    ~Closer() { ::close(fd); }
-  } closer{fd};
-  struct stat info {};
-  if (::fstat(fd, &info) != 0) throw SceneError(file, std::string("cannot open: ") + std::strerror(errno));
-  if (!S_ISREG(info.st_mode)) throw SceneError(file, "cannot open: not a regular file");
-  if (static_cast<std::uintmax_t>(info.st_size) > kMaxFileBytes)
-    throw SceneError(file, "file too large (" + std::to_string(info.st_size) + " bytes; the limit is 1 GiB)");
-  data_.resize(static_cast<std::size_t>(info.st_size));
-  std::size_t filled = 0;
-  while (filled < data_.size()) {
-    const ssize_t n = ::read(fd, data_.data() + filled, data_.size() - filled);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) throw SceneError(file, std::string("read failed: ") + std::strerror(errno));
-    if (n == 0) break;
-    filled += static_cast<std::size_t>(n);
-  }
-  data_.resize(filled);
+  data_ = readFileBytes(file, kMaxFileBytes);
 
   // Lines end at \n, \r\n or a lone \r.
   std::size_t line = 1;

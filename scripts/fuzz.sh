@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
-# Fuzzes the scene loaders (OBJ, AFF/NFF, glTF, PLY through Assimp) and the command-line parser
-# with libFuzzer under AddressSanitizer and UBSan: installs clang 14 if
-# missing, builds tests/fuzz/ in build-fuzz/, then runs each target for the
-# given seconds (default 60) on a copy of its seed corpus. Exits non-zero
+# Fuzzes the scene loaders (OBJ, AFF/NFF, glTF, PLY, OFF, 3DS through Assimp) and the
+# command-line parser with libFuzzer under AddressSanitizer and UBSan: installs clang 14 if
+# missing, builds tests/fuzz/ in build-fuzz/, then runs the targets one after
+# another, sharing the given seconds (default 300) equally, each on a copy of its seed corpus. Exits non-zero
 # naming the target and the reproducer when any target finds something; a
 # reproducer is fixed at its root and kept in tests/data/fuzz_regressions/.
-#   bash scripts/fuzz.sh [seconds-per-target]
+#   bash scripts/fuzz.sh [total-seconds]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-seconds="${1:-60}"
+total="${1:-300}"
 
 packages=(clang-14 libclang-rt-14-dev cmake make libglm-dev libcli11-dev nlohmann-json3-dev
           libtinyobjloader-dev libtinygltf-dev libassimp-dev)
@@ -38,9 +38,12 @@ export TMPDIR="$PWD/$work/tmp"
 # Leaks inside Assimp (and the GL libraries) only; why each is there is in the file.
 export LSAN_OPTIONS="suppressions=$PWD/tests/sanitizer/lsan.supp:print_suppressions=0"
 failed=()
-# target:max_len (bytes). Text scenes (and PLY) need room for a few commands or elements; glTF for a
+# target:max_len (bytes). Text scenes (and PLY, 3DS) need room for a few commands or elements; glTF for a
 # JSON document with an embedded buffer; a command line is short.
-for entry in obj:4096 aff:8192 gltf:16384 ply:4096 cli:1024; do
+targets=(obj:4096 aff:8192 gltf:16384 ply:4096 off:4096 3ds:4096 cli:1024)
+seconds=$((total / ${#targets[@]}))
+((seconds > 0)) || seconds=1
+for entry in "${targets[@]}"; do
   target="${entry%%:*}"
   mkdir -p "$work/corpus-$target" "$work/findings-$target"
   cp tests/fuzz/corpus/"$target"/* "$work/corpus-$target/"

@@ -1,7 +1,6 @@
-// libFuzzer target: PLY through loadScene (the header check, Assimp, the
-// node walk, framing, rescaling: the command line's path). Assimp itself is
-// Debian's uninstrumented library: ASan still catches what it does to
-// memory the loader owns, and a crash inside it still stops the run.
+// libFuzzer target: PLY through loadScene (passtrace's own reader: the
+// header check of ply_header.h and the body of ply_reader.h, then framing and
+// rescaling: the command line's path).
 #include <cstddef>
 #include <cstdint>
 

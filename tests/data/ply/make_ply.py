@@ -85,3 +85,37 @@ write("bad_type.ply", ascii_ply(PYRAMID_VERTICES, PYRAMID_FACES).replace("proper
 # Assimp sizes a list from its length before reading the items.
 write("ascii_list_too_long.ply",
       ascii_ply([(0, 0, 0), (1, 0, 0), (0, 1, 0)], [(0, 1, 2)]).replace("\n3 0 1 2\n", "\n4000000000 0 1 2\n"))
+
+# --- out-of-range vertex indices in the formats read through Assimp ----------
+# Each the pyramid with its last face's first index out of range. Assimp 5.2
+# rejects the COLLADA one itself; it clamps the 3DS and OFF ones, drops the
+# X one from its face and the FBX mesh whole (scenes/assimp_index_watch.h).
+write("index_out_of_range.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n")
+with open("pyramid.dae") as f:
+    write("index_out_of_range.dae", f.read().replace("12 13 14 15 </p>", "12 13 14 99 </p>"))
+with open("pyramid.x") as f:
+    write("index_out_of_range.x", f.read().replace("3;15,14,13;;", "3;99,14,13;;"))
+with open("pyramid.fbx") as f:
+    write("index_out_of_range.fbx", f.read().replace("13,14,-16", "13,14,-100"))
+
+
+def patch_3ds_last_face(data):
+    """The first index of the last face in the first face list (chunk 0x4120)."""
+    data = bytearray(data)
+    def walk(at, end):
+        while at + 6 <= end:
+            chunk, length = struct.unpack_from("<HI", data, at)
+            if chunk in (0x4D4D, 0x3D3D, 0x4100):
+                walk(at + 6, at + length)
+            elif chunk == 0x4000:  # an object: a name, then chunks
+                walk(data.index(0, at + 6) + 1, at + length)
+            elif chunk == 0x4120:
+                count = struct.unpack_from("<H", data, at + 6)[0]
+                struct.pack_into("<H", data, at + 8 + 8 * (count - 1), 99)
+            at += length
+    walk(0, len(data))
+    return bytes(data)
+
+
+with open("pyramid.3ds", "rb") as f:
+    write("index_out_of_range.3ds", patch_3ds_last_face(f.read()))

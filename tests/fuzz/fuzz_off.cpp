@@ -1,0 +1,14 @@
+// libFuzzer target: OFF through loadScene (passtrace's own reader,
+// off_reader.h, then framing and rescaling: the command line's path).
+#include <cstddef>
+#include <cstdint>
+
+#include "scenes/scene_registry.h"
+#include "tests/fuzz/fuzz_input_file.h"
+#include "tests/fuzz/fuzz_loader_target.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  using namespace passtrace;
+  fuzz::requireCleanOutcome(fuzz::writeInputFile("input.off", data, size), [](const auto& p) { return loadScene(p.string()); });
+  return 0;
+}
