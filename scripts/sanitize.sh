@@ -28,7 +28,9 @@ export UBSAN_OPTIONS="halt_on_error=1:exitcode=23:print_stacktrace=1"
 # Leaks inside Mesa/LLVM/Assimp only; why each is there is in the file.
 export LSAN_OPTIONS="suppressions=$PWD/tests/sanitizer/lsan.supp:print_suppressions=0"
 
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Debug -DPASSTRACE_SANITIZE=ON
+launcher=()  # ccache where the machine has it, as setup.sh and fuzz.sh
+command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Debug -DPASSTRACE_SANITIZE=ON "${launcher[@]}"
 cmake --build "$build" -j"$(nproc)"
 # Mesa unloads its GL driver, and LeakSanitizer would then report what the
 # driver's globals held; the preloaded shim keeps libraries loaded (see the file).
