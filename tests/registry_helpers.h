@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <memory>
 #include <optional>
 #include <span>
@@ -77,6 +78,26 @@ inline std::vector<std::pair<int, std::string>> everyStructureRun() {
         runs.emplace_back(int(r), std::string(s.name) + " --bvh8-builder sbvh");
     }
   return runs;
+}
+
+// Whether an everyStructureRun entry stands for its family on its renderer in
+// the long BART matrix: the family's first row there, without variant flags.
+// The rest of the family shares its builder, its texel layout and most of its
+// traversal, and runs on the Cornell box and the bunny anyway; the whole
+// matrix runs with PASSTRACE_FULL_MATRIX=1 (docs/testing.md).
+inline bool representsItsFamily(const std::pair<int, std::string>& run) {
+  if (run.second.find(' ') != std::string::npos) return false;
+  const RendererId renderer = RendererId(run.first);
+  for (const Structure& s : structures()) {
+    if (!s.runsOn(renderer)) continue;
+    if (s.family == resolveStructure(run.second, renderer).family) return s.name == run.second;
+  }
+  return false;
+}
+
+inline bool fullMatrix() {
+  const char* full = std::getenv("PASSTRACE_FULL_MATRIX");
+  return full && std::string_view(full) == "1";
 }
 
 // A test name for an everyStructureRun entry: "r2_kd_shortstack_stack_size_1"
