@@ -30,6 +30,9 @@ export LSAN_OPTIONS="suppressions=$PWD/tests/sanitizer/lsan.supp:print_suppressi
 
 launcher=()  # ccache where the machine has it, as setup.sh and fuzz.sh
 command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+# Paths relative to the checkout, so that another clone of the same sources
+# hits the cache; the precompiled headers' compiles are cacheable only so.
+export CCACHE_BASEDIR="$PWD" CCACHE_SLOPPINESS=pch_defines,time_macros
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Debug -DPASSTRACE_SANITIZE=ON "${launcher[@]}"
 cmake --build "$build" -j"$(nproc)"
 # Mesa unloads its GL driver, and LeakSanitizer would then report what the
