@@ -19,7 +19,9 @@
 #include <assimp/scene.h>
 
 #include "scenes/assimp_index_watch.h"
+#include "scenes/file_extension.h"
 #include "scenes/scene_error.h"
+#include "scenes/scene_limits.h"
 #include "scenes/scene_registry.h"
 #include "scenes/tessellate.h"
 
@@ -28,19 +30,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t{2} << 30;
-// The glTF loader's limit: instancing (one mesh under many nodes) could
-// otherwise multiply a small file into any number of triangles before the
-// memory check sees the scene.
-constexpr std::size_t kMaxTriangles = std::size_t{1} << 25;
 constexpr unsigned kMaxFaceCorners = 1024;
-constexpr std::size_t kMaxNodeDepth = 1024;
-
-std::string lowerExtension(const fs::path& path) {
-  std::string extension = path.extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return extension;
-}
 
 bool isFinite(const aiVector3D& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
@@ -78,8 +68,8 @@ class AssimpBuilder {
                  std::to_string(n) + " corners; at most " + std::to_string(kMaxFaceCorners) + " are supported");
           if (n >= 3) triangles += n - 2;
         }
-        if (triangles > kMaxTriangles)
-          fail("the scene exceeds " + std::to_string(kMaxTriangles) + " triangles");
+        if (triangles > kMaxSceneTriangles)
+          fail("the scene exceeds " + std::to_string(kMaxSceneTriangles) + " triangles");
       }
   }
 
@@ -224,7 +214,7 @@ Scene loadWithAssimp(const fs::path& path) {
   struct stat info {};
   if (::stat(path.c_str(), &info) != 0) throw SceneError(path, std::string("cannot open: ") + std::strerror(errno));
   if (!S_ISREG(info.st_mode)) throw SceneError(path, "cannot open: not a regular file");
-  if (static_cast<std::uintmax_t>(info.st_size) > kMaxFileBytes)
+  if (static_cast<std::uintmax_t>(info.st_size) > kMaxSceneFileBytes)
     throw SceneError(path, "file too large (" + std::to_string(info.st_size) + " bytes; the limit is 2 GiB)");
 
   Assimp::Importer importer;

@@ -3,10 +3,10 @@
 namespace passtrace {
 namespace {
 
-enum MaterialId : uint32_t { kWhite, kRed, kGreen, kLight };
+enum CornellMaterial : uint32_t { kWhite, kRed, kGreen, kLight };
 
 // Splits the quad a-b-c-d (in order around its edge) into (a,b,c), (a,c,d).
-void addQuad(Scene& scene, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, MaterialId material) {
+void addQuad(Scene& scene, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, CornellMaterial material) {
   scene.triangles.push_back({a, b, c});
   scene.triangles.push_back({a, c, d});
   scene.materialIds.insert(scene.materialIds.end(), 2, material);

@@ -22,7 +22,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-enum MaterialId : uint32_t { kGround = 0, kMirror = 1, kBark = 2, kLeaves = 3, kBunny = 4 };
+enum CowsMaterial : uint32_t { kGround = 0, kMirror = 1, kBark = 2, kLeaves = 3, kBunny = 4 };
 
 // Uniform floats in [0, 1) from mt19937's raw output (the standard's
 // distributions differ between libraries; the engine does not).

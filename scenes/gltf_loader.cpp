@@ -23,6 +23,7 @@
 
 // tinygltf's JSON is nlohmann's, which the project already links.
 #define TINYGLTF_IMPLEMENTATION
+#include "scenes/scene_limits.h"
 #include "scenes/tinygltf_include.h"
 
 #include "scenes/gltf_animation.h"
@@ -34,10 +35,6 @@ namespace passtrace {
 namespace {
 
 namespace fs = std::filesystem;
-
-constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t{1} << 30;
-constexpr std::size_t kMaxTriangles = std::size_t{1} << 25;
-constexpr std::size_t kMaxNodeDepth = 1024;
 
 bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
   return true;
@@ -58,7 +55,7 @@ bool readRegularFile(std::vector<unsigned char>* out, std::string* error, const 
   }
   struct stat info {};
   const bool regular = ::fstat(fd, &info) == 0 && S_ISREG(info.st_mode);
-  const bool small = static_cast<std::uintmax_t>(info.st_size) <= kMaxFileBytes;
+  const bool small = static_cast<std::uintmax_t>(info.st_size) <= kMaxParsedFileBytes;
   if (regular && small) {
     out->resize(static_cast<std::size_t>(info.st_size));
     std::size_t filled = 0;
@@ -413,8 +410,8 @@ class GltfBuilder {
         // Spec: triangle i is (i + 1, i + 2, 0).
         for (std::size_t k = 0; k + 2 < n; ++k) corners.push_back({order[k + 1], order[k + 2], order[0]});
       }
-      if (scene_.triangles.size() + corners.size() > kMaxTriangles)
-        fail(where + ": the scene exceeds " + std::to_string(kMaxTriangles) + " triangles");
+      if (scene_.triangles.size() + corners.size() > kMaxSceneTriangles)
+        fail(where + ": the scene exceeds " + std::to_string(kMaxSceneTriangles) + " triangles");
       const uint32_t materialId = material(prim.material, where);
       for (auto c : corners) {
         if (det < 0.0f) std::swap(c[1], c[2]);
@@ -548,7 +545,7 @@ Scene loadGltf(const fs::path& path, float time) {
   struct stat info {};
   if (::stat(path.c_str(), &info) != 0) throw SceneError(path, std::string("cannot open: ") + std::strerror(errno));
   if (!S_ISREG(info.st_mode)) throw SceneError(path, "cannot open: not a regular file");
-  if (static_cast<std::uintmax_t>(info.st_size) > kMaxFileBytes)
+  if (static_cast<std::uintmax_t>(info.st_size) > kMaxParsedFileBytes)
     throw SceneError(path, "file too large (" + std::to_string(info.st_size) + " bytes; the limit is 1 GiB)");
 
   tinygltf::TinyGLTF loader;

@@ -23,13 +23,13 @@
 
 #include "scenes/polygon_triangulation.h"
 #include "scenes/scene_error.h"
+#include "scenes/scene_limits.h"
 
 namespace passtrace {
 namespace {
 
 namespace fs = std::filesystem;
 
-constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t{2} << 30;
 constexpr std::size_t kMaxLineBytes = std::size_t{1} << 20;
 // tinyobjloader stores a face's vertex count in one byte.
 constexpr std::size_t kMaxFaceVertices = 255;
@@ -68,7 +68,7 @@ void forEachLine(const fs::path& file, OnLine&& onLine) {
   struct stat info {};
   if (::fstat(fd.get(), &info) != 0) throw SceneError(file, std::string("cannot open: ") + std::strerror(errno));
   if (!S_ISREG(info.st_mode)) throw SceneError(file, "cannot open: not a regular file");
-  if (static_cast<std::uintmax_t>(info.st_size) > kMaxFileBytes)
+  if (static_cast<std::uintmax_t>(info.st_size) > kMaxSceneFileBytes)
     throw SceneError(file, "file too large (" + std::to_string(info.st_size) + " bytes; the limit is 2 GiB)");
 
   std::vector<char> chunk(std::size_t{1} << 16);

@@ -13,6 +13,7 @@
 #include "scenes/indexed_mesh.h"
 #include "scenes/ply_header.h"
 #include "scenes/scene_error.h"
+#include "scenes/scene_limits.h"
 #include "scenes/text_reader.h"
 
 namespace passtrace {
@@ -20,7 +21,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t{2} << 30;
 
 // The range of an integer type's values.
 bool fits(double value, PlyType type) {
@@ -377,7 +377,7 @@ class PlyBody {
 }  // namespace
 
 Scene loadPly(const fs::path& path) {
-  const std::string data = readFileBytes(path, kMaxFileBytes);
+  const std::string data = readFileBytes(path, kMaxSceneFileBytes);
   const PlyHeader header = parsePlyHeader(path, data);
   PlyBody body(path, header);
   IndexedMesh mesh;

@@ -11,18 +11,13 @@
 #include <string>
 #include <vector>
 
+#include "scenes/file_extension.h"
 #include "scenes/tessellate.h"
 #include "scenes/tinygltf_include.h"
 
 namespace passtrace {
 namespace fs = std::filesystem;
 namespace {
-
-std::string lowerExtension(const fs::path& file) {
-  std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return ext;
-}
 
 [[noreturn]] void fail(const fs::path& file, const std::string& reason) {
   throw std::runtime_error(file.string() + ": cannot export: " + reason);

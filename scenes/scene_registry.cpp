@@ -17,6 +17,7 @@
 #include "scenes/assimp_loader.h"
 #include "scenes/cornell_box.h"
 #include "scenes/cows_scene.h"
+#include "scenes/file_extension.h"
 #include "scenes/gltf_loader.h"
 #include "scenes/obj_loader.h"
 #include "scenes/off_reader.h"
@@ -65,13 +66,6 @@ void frame(Scene& scene) {
   scene.lightIsDefault = true;
   scene.background = {0.1f, 0.12f, 0.16f};
   scene.ambient = 0.1f;
-}
-
-std::string lowerExtension(const fs::path& path) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension;
 }
 
 Scene loadFile(const fs::path& path, const SceneOptions& options) {

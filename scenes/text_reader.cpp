@@ -10,18 +10,18 @@
 
 #include "scenes/file_bytes.h"
 #include "scenes/scene_error.h"
+#include "scenes/scene_limits.h"
 
 namespace passtrace {
 namespace {
 
-constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t{1} << 30;
 
 bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
 
 }  // namespace
 
 TextReader::TextReader(const std::filesystem::path& file) : file_(file) {
-  data_ = readFileBytes(file, kMaxFileBytes);
+  data_ = readFileBytes(file, kMaxParsedFileBytes);
 
   // Lines end at \n, \r\n or a lone \r.
   std::size_t line = 1;

@@ -1,9 +1,16 @@
 #!/usr/bin/env bash
 # Builds passtrace with AddressSanitizer + UndefinedBehaviorSanitizer in
-# build-asan/ (or the directory given as the first argument) and runs the whole
-# test suite there. Every report is fatal, in the test binary and in the
-# passtrace processes the tests spawn, so any report fails its test.
+# build-asan/ (or the directory given as the first argument) and runs its
+# GoogleTest binaries there (unit, gl, e2e: the slow label runs once, in the
+# suite, unsanitized). Every report is fatal, in the test binary and in the
+# passtrace processes the e2e tests spawn, so any report fails the run.
 # Running it again only rebuilds what changed.
+#
+# The binaries run whole, each split into shards (GoogleTest's own sharding)
+# that run two at a time, rather than one process per test as ctest runs
+# them: a sanitized process takes about 1.2 s to start and end (the runtime,
+# Mesa's JIT, the leak check at exit), which over ~950 tests was half of the
+# run. A shard stops at its first sanitizer report; the log names the test.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build="$(realpath -m "${1:-build-asan}")"
@@ -34,29 +41,54 @@ command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache 
 # hits the cache; the precompiled headers' compiles are cacheable only so.
 export CCACHE_BASEDIR="$PWD" CCACHE_SLOPPINESS=pch_defines,time_macros
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Debug -DPASSTRACE_SANITIZE=ON "${launcher[@]}"
-cmake --build "$build" -j"$(nproc)"
+# Only what the sanitized run uses: not the slow label's binary nor the measurement tools.
+targets=(passtrace passtrace_unit_tests passtrace_gl_tests passtrace_e2e_tests passtrace_image_tests
+         passtrace_no_image_output_tests passtrace_fail_writes)
+cmake --build "$build" -j"$(nproc)" --target "${targets[@]}"
 # Mesa unloads its GL driver, and LeakSanitizer would then report what the
 # driver's globals held; the preloaded shim keeps libraries loaded (see the file).
 # It comes before the ASan runtime in the load order, which ASan allows here.
 cc -shared -fPIC -O1 -o "$build/libkeep_libraries_loaded.so" tests/sanitizer/keep_libraries_loaded.c
 export ASAN_OPTIONS="$ASAN_OPTIONS:verify_asan_link_order=0"
-# Every test except the `slow` label (tests/slow/: each structure through the
-# CLI on several scenes, the BART scenes, the large builds, the benchmark
-# plumbing), code paths the rest already covers with many more processes and
-# larger inputs; the watertightness test runs 12,000 rays per structure instead
-# of 60,000. Sanitized code runs about 5x slower.
+
+# Left out, as code paths the rest already takes under the sanitizers (each
+# still runs unsanitized in the suite): the agreement tests' build variants
+# (--stack-size 1/8, the binned kd builds, the sbvh builds (bvh-stack,
+# bvh-octant, bvh8) and middle builds); the per-mesh suites' sphere, two grids
+# and single triangle (the edge cases are in the soup, degenerate, coincident,
+# ... meshes); the GPU watertightness test with Moller-Trumbore (the same
+# builds and kernels as with the watertight test).
+# The watertightness tests run 12,000 rays per structure instead of 60,000.
 # PASSTRACE_SANITIZE_ALL=1 runs everything.
-# The slow label runs once (unsanitized) in CI; so do the agreement tests'
-# build variants (--stack-size 1/8, the binned kd builds, the sbvh builds (bvh-stack, bvh-octant, bvh8) and
-# middle builds), whose code paths the default cases already take under the
-# sanitizers; and every structure x mesh matrix (CpuStructureAgreement,
-# GpuTraversalAgreement, the Meshes/ suites) on the meshes that hold the edge
-# cases (soup, degenerate, coincident, ...) rather than all: the sphere, the
-# two grids and the single triangle take no code path the others do not.
-# ctest's names of parameterised tests end in "  # GetParam() = ...", hence
-# "( |$)" rather than "$".
-redundantMeshes="[/_](sphere|gridZ|gridX|single)( |$)"
-select=(-LE slow -E "_stack[18]_|_binned|_sbvh(_| |$)|_middle_|$redundantMeshes")
-if [ "${PASSTRACE_SANITIZE_ALL:-0}" = 1 ]; then select=(); fi
-LD_PRELOAD="$build/libkeep_libraries_loaded.so" PASSTRACE_WATERTIGHT_RAYS="${PASSTRACE_WATERTIGHT_RAYS:-12000}" \
-  ctest --test-dir "$build" --output-on-failure -j2 "${select[@]}"
+filter="-"
+for variant in stack1 stack8 binned binned_papay sbvh middle; do filter+="*_$variant:*_${variant}_*:"; done
+for mesh in sphere gridZ gridX single; do filter+="*/$mesh:*_$mesh:"; done
+filter+="*WatertightGpu.AllStructures/moller_trumbore"
+if [ "${PASSTRACE_SANITIZE_ALL:-0}" = 1 ]; then filter="*"; fi
+export PASSTRACE_WATERTIGHT_RAYS="${PASSTRACE_WATERTIGHT_RAYS:-12000}"
+
+# BINARY SHARDS per line, the longest first (two run at a time).
+jobs="passtrace_e2e_tests 3
+passtrace_unit_tests 3
+passtrace_gl_tests 2
+passtrace_image_tests 1
+passtrace_no_image_output_tests 1"
+logs="$build/sanitize-logs"
+rm -rf "$logs" && mkdir -p "$logs"
+runShard() {  # BINARY INDEX COUNT: one shard, its log kept; the log is printed if it fails
+  local log="$logs/$1.$2.log"
+  if LD_PRELOAD="$build/libkeep_libraries_loaded.so" GTEST_TOTAL_SHARDS="$3" GTEST_SHARD_INDEX="$2" \
+     timeout 1800 "$build/tests/$1" --gtest_filter="$filter" --gtest_brief=1 > "$log" 2>&1; then
+    echo "sanitize: $1 shard $(($2 + 1))/$3: $(grep -o '[0-9]* tests\? from [0-9]* test suites\? ran.*' "$log" | head -1)"
+  else
+    echo "sanitize: $1 shard $(($2 + 1))/$3 FAILED (exit $?); its log ($log):"
+    cat "$log"
+    return 1
+  fi
+}
+export -f runShard
+export build logs filter
+while read -r binary count; do
+  for ((i = 0; i < count; ++i)); do echo "$binary $i $count"; done
+done <<< "$jobs" | xargs -P 2 -L 1 bash -c 'runShard "$@"' _
+echo "sanitize: every shard passed"

@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cstdlib>
 #include <memory>
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -93,6 +94,20 @@ inline bool representsItsFamily(const std::pair<int, std::string>& run) {
     if (s.family == resolveStructure(run.second, renderer).family) return s.name == run.second;
   }
   return false;
+}
+
+// The runs of `runs` whose structure (the name before any flags) is the first
+// one listed for their renderer, with all of that structure's variants.
+inline std::vector<std::pair<int, std::string>> firstStructurePerRenderer(
+    const std::vector<std::pair<int, std::string>>& runs) {
+  const auto structureOf = [](const std::string& run) { return run.substr(0, run.find(' ')); };
+  std::map<int, std::string> first;
+  std::vector<std::pair<int, std::string>> kept;
+  for (const auto& [renderer, run] : runs) {
+    const std::string& structure = first.try_emplace(renderer, structureOf(run)).first->second;
+    if (structureOf(run) == structure) kept.emplace_back(renderer, run);
+  }
+  return kept;
 }
 
 inline bool fullMatrix() {
