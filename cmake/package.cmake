@@ -11,6 +11,9 @@ set(PASSTRACE_INCLUDE_DIR ${CMAKE_INSTALL_INCLUDEDIR}/passtrace)
 set(PASSTRACE_CONFIG_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/passtrace)
 
 install(TARGETS passtrace RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+if(TARGET passtrace_oiio)  # the image formats but OpenEXR, loaded at run time (render/oiio_module.h)
+  install(TARGETS passtrace_oiio LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/passtrace)
+endif()
 install(TARGETS passtrace_geometry passtrace_glad passtrace_stream passtrace_scenes passtrace_accel passtrace_lib
   EXPORT passtraceTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}

@@ -1,9 +1,11 @@
 #pragma once
-// Rendered images and hit buffers encoded with OpenImageIO, in memory: each
-// encode* returns the bytes of the file `path` names (the format follows its
-// extension), for the run's OutputFiles (render/output_files.h) to write.
-// Formats whose OpenImageIO writer cannot write to memory are refused. Every
-// failure throws std::runtime_error("PATH: reason").
+// Rendered images and hit buffers encoded in memory: each encode* returns the
+// bytes of the file `path` names (the format follows its extension), for the
+// run's OutputFiles (render/output_files.h) to write. OpenEXR files are
+// written by the OpenEXR library (render/exr_io.h), every other format by
+// OpenImageIO, loaded when first named (render/oiio_module.h); formats whose
+// OpenImageIO writer cannot write to memory are refused. Every failure throws
+// std::runtime_error("PATH: reason").
 
 #include <cstdint>
 #include <filesystem>
@@ -21,6 +23,9 @@ void checkImageFormat(const std::filesystem::path& path);
 // get the values as they are; all others get them clamped to [0,1] and
 // quantised to 8 bits with no gamma, so pixel values stay predictable.
 std::string encodeImage(const std::filesystem::path& path, int width, int height, const std::vector<float>& rgb);
+
+// Reads an OpenEXR image's R, G and B channels back as encodeImage took them.
+std::vector<float> readImage(const std::filesystem::path& path, int& width, int& height);
 
 // One pixel of a hit buffer; a miss is id 0xFFFFFFFF (kNoHit) with t = +inf.
 struct HitRecord {

@@ -18,6 +18,7 @@ namespace {
 
 void checkImageFormat(const std::filesystem::path& path) { unavailable(path); }
 std::string encodeImage(const std::filesystem::path& path, int, int, const std::vector<float>&) { unavailable(path); }
+std::vector<float> readImage(const std::filesystem::path& path, int&, int&) { unavailable(path); }
 std::string encodeHitBuffer(const std::filesystem::path& path, int, int, const std::vector<HitRecord>&) {
   unavailable(path);
 }

@@ -20,7 +20,7 @@ packages=(
   libegl-dev libegl-mesa0 libgl1-mesa-dri       # headless EGL and Mesa's drivers (llvmpipe)
   libosmesa6-dev                                # the OSMesa backend (optional)
   libglm-dev libcli11-dev nlohmann-json3-dev libgtest-dev   # GoogleTest: the tests (optional)
-  libopenimageio-dev                            # image and OpenEXR output
+  libopenexr-dev libopenimageio-dev             # OpenEXR output; the other image formats (loaded when used)
   libtinyobjloader-dev libtinygltf-dev          # scene loaders
   libassimp-dev                                 # Open Asset Import Library: PLY, STL, FBX, COLLADA, 3DS
   libtbb-dev                                    # oneTBB: the CPU renderer's threads

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include "render/image_output.h"
 #include "scenes/scene_registry.h"
 #include "tests/cli_support.h"
 #include "tests/real_scenes_dir.h"
@@ -24,16 +24,12 @@ using LightsCli = test::CliTest;
 
 // The fraction of pixels with some channel above 0.2 (the measure of a lit image).
 double litFraction(const std::string& exr) {
-  auto in = OIIO::ImageInput::open(exr);
-  EXPECT_TRUE(in) << exr;
-  if (!in) return 0.0;
-  const OIIO::ImageSpec spec = in->spec();
-  std::vector<float> rgb(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
-  EXPECT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, rgb.data()));
+  int width = 0, height = 0;
+  const std::vector<float> rgb = readImage(exr, width, height);
   size_t lit = 0;
-  for (size_t p = 0; p < rgb.size(); p += size_t(spec.nchannels))
+  for (size_t p = 0; p < rgb.size(); p += 3)
     lit += std::any_of(rgb.begin() + long(p), rgb.begin() + long(p) + 3, [](float c) { return c > 0.2f; }) ? 1 : 0;
-  return double(lit) / double(size_t(spec.width) * size_t(spec.height));
+  return double(lit) / double(size_t(width) * size_t(height));
 }
 
 // A closed room [0,10]^3 (walls facing in) with a table-like box inside; no lights in the file.
