@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Fuzzes the scene loaders (OBJ, AFF/NFF, glTF, PLY, OFF, 3DS through Assimp) and the
 # command-line parser with libFuzzer under AddressSanitizer and UBSan: installs clang 14 if
-# missing, builds tests/fuzz/ in build-fuzz/, then runs the targets one after
-# another, sharing the given seconds (default 300) equally, each on a copy of its seed corpus. Exits non-zero
+# missing, builds tests/fuzz/ in build-fuzz/, then runs the targets one per core
+# at a time, for the given seconds of wall time in all (default 300) shared
+# equally, each on a copy of its seed corpus. Exits non-zero
 # naming the target and the reproducer when any target finds something; a
 # reproducer is fixed at its root and kept in tests/data/fuzz_regressions/.
 #   bash scripts/fuzz.sh [total-seconds]
@@ -40,20 +41,33 @@ mkdir -p "$work/tmp"
 export TMPDIR="$PWD/$work/tmp"
 # Leaks inside Assimp (and the GL libraries) only; why each is there is in the file.
 export LSAN_OPTIONS="suppressions=$PWD/tests/sanitizer/lsan.supp:print_suppressions=0"
-failed=()
 # target:max_len (bytes). Text scenes (and PLY, 3DS) need room for a few commands or elements; glTF for a
 # JSON document with an embedded buffer; a command line is short.
 targets=(obj:4096 aff:8192 gltf:16384 ply:4096 off:4096 3ds:4096 cli:1024)
-seconds=$((total / ${#targets[@]}))
+cores="$(nproc)"
+seconds=$((total * cores / ${#targets[@]}))
 ((seconds > 0)) || seconds=1
-for entry in "${targets[@]}"; do
-  target="${entry%%:*}"
+fuzzOne() {  # TARGET:MAX_LEN; leaves $work/TARGET.failed when it finds something
+  local target="${1%%:*}"
   mkdir -p "$work/corpus-$target" "$work/findings-$target"
   cp tests/fuzz/corpus/"$target"/* "$work/corpus-$target/"
-  echo "fuzz: $target for ${seconds}s"
   if ! "build-fuzz/fuzz_$target" "$work/corpus-$target" -dict="tests/fuzz/$target.dict" \
-      -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len="${entry#*:}" \
+      -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len="${1#*:}" \
       -artifact_prefix="$work/findings-$target/" -print_final_stats=1 > "$work/$target.log" 2>&1; then
+    touch "$work/$target.failed"
+  fi
+}
+running=0
+for entry in "${targets[@]}"; do
+  echo "fuzz: ${entry%%:*} for ${seconds}s"
+  fuzzOne "$entry" &
+  if ((++running >= cores)); then wait -n; running=$((running - 1)); fi
+done
+wait
+failed=()
+for entry in "${targets[@]}"; do
+  target="${entry%%:*}"
+  if [ -e "$work/$target.failed" ]; then
     tail -n 40 "$work/$target.log"
     findings="$(ls "$work/findings-$target"/* 2>/dev/null | tr '\n' ' ' || true)"
     failed+=("$target: ${findings}(log: $work/$target.log)")
