@@ -6,12 +6,6 @@
 # Everything that traces, builds or loads geometry keeps the build type's flags.
 # -O1 comes after them on the command line, so it wins.
 set(PASSTRACE_COLD_OPTIONS $<$<CONFIG:Release,RelWithDebInfo,MinSizeRel>:-O1>)
-# A sanitized build checks rather than measures: there cold code and the tests'
-# own code are compiled at -O0, a third faster than -O1 under ASan + UBSan
-# (tests/unit/kd_build_test.cpp: 14.5 s -> 9.5 s); the code under test keeps -O1.
-if(PASSTRACE_SANITIZE)
-  set(PASSTRACE_COLD_OPTIONS -O0)
-endif()
 
 # passtrace_cold_sources(FILE ...): these sources of the current folder's targets.
 function(passtrace_cold_sources)
