@@ -79,8 +79,14 @@ passtrace_no_image_output_tests 1"
 logs="$build/sanitize-logs"
 rm -rf "$logs" && mkdir -p "$logs"
 runShard() {  # BINARY INDEX COUNT: one shard, its log kept; the log is printed if it fails
-  local log="$logs/$1.$2.log"
-  if LD_PRELOAD="$build/libkeep_libraries_loaded.so" GTEST_TOTAL_SHARDS="$3" GTEST_SHARD_INDEX="$2" \
+  local log="$logs/$1.$2.log" asan="$ASAN_OPTIONS"
+  # The passtrace processes the e2e tests start run without LeakSanitizer:
+  # its exit-time tracer crashed (signal 11) in GPU-path runs in some
+  # checkouts and not in others (the same sources, another path), failing
+  # tests for no leak. Leaks are still checked in the unit and gl binaries,
+  # which run the same library code in-process; ASan and UBSan stay on.
+  [ "$1" = passtrace_e2e_tests ] && asan+=":detect_leaks=0"
+  if ASAN_OPTIONS="$asan" LD_PRELOAD="$build/libkeep_libraries_loaded.so" GTEST_TOTAL_SHARDS="$3" GTEST_SHARD_INDEX="$2" \
      timeout 1800 "$build/tests/$1" --gtest_filter="$filter" --gtest_brief=1 > "$log" 2>&1; then
     echo "sanitize: $1 shard $(($2 + 1))/$3: $(grep -o '[0-9]* tests\? from [0-9]* test suites\? ran.*' "$log" | head -1)"
   else
