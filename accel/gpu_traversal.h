@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "accel/cpu_accelerator.h"
+#include "stream/stream_stage.h"
 
 namespace passtrace {
 
@@ -76,6 +77,9 @@ struct GpuTraversalConfig {
   // --compact: whether the GPU renderer gathers a generation's live rays into
   // whole 4x4 blocks before tracing them (render/gpu_renderer.h); structures ignore it.
   Compaction compact = Compaction::Off;
+  // --stage: which GL stage runs the kernels (stream/stream_stage.h). The
+  // session makes it current for the whole run; structures ignore it.
+  StreamStage stage = StreamStage::Fragment;
   // Whether the run asked for one pass per bounce (-l 0, or an -l the pass's
   // budget bounds); set by withPassStepLimit. Only then does a structure offer
   // its fused bounce (FusedBounce): at a smaller -l most rays would leave the

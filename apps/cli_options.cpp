@@ -170,6 +170,10 @@ void addStreamOptions(CLI::App& app, Options& o) {
   app.add_option("-l,--loop-limit", o.loopLimit,
                  "traversal steps per ray per pass (the thesis: 20); 0: one pass per bounce")
       ->check(CLI::Range(0, 1 << 20))->capture_default_str()->group(kStreamGroup);
+  app.add_option("--stage", o.stage,
+                 "the GL stage that runs the kernels: fragment passes (the thesis's model) or compute shaders "
+                 "over lists of the active rays")
+      ->check(CLI::IsMember({"fragment", "compute"}))->capture_default_str()->group(kStreamGroup);
   app.add_option("--compact", o.compact,
                  "gather live rays into whole 4x4 blocks before tracing: when at most half are live (on), always, "
                  "or off (the thesis's stream)")

@@ -49,6 +49,7 @@ struct Options {
   std::string json;                 // --json FILE (with --list and no FILE: standard output)
   std::string glBackend = "auto";   // --gl-backend
   std::string gridKernels = "merged";  // --grid-kernels: merged or split (Purcell)
+  std::string stage = "fragment";      // --stage: fragment or compute (-r 2)
   std::string compact = "off";         // --compact: off, on or always (live-ray compaction, -r 2)
   std::string triangleTest = "moller-trumbore";  // --triangle-test: moller-trumbore or watertight
   std::string kdBuilder = "exact";      // --kd-builder: exact or binned SAH

@@ -36,6 +36,7 @@ RunSettings toRunSettings(const Options& o) {
   s.gpu.loopLimit = o.loopLimit;
   s.gpu.gridKernels = o.gridKernels == "split" ? GridKernels::Split : GridKernels::Merged;
   s.gpu.maxPageTexels = o.pageTexels;
+  s.gpu.stage = *parseStreamStage(o.stage);  // the parser accepts only valid names
   s.gpu.compact = o.compact == "always" ? Compaction::Always : o.compact == "on" ? Compaction::On : Compaction::Off;
   s.threads = o.threads;
   s.eye = o.eye, s.lookAt = o.lookAt, s.up = o.up, s.fov = o.fov, s.lights = o.lights;

@@ -73,6 +73,7 @@ nlohmann::json toJson(const RunReport& r) {
   };
   j["shading"] = r.shading;
   j["compact"] = r.compact;
+  j["stage"] = orNull(r.stage);
   // Only in --frames runs, so that a single frame's keys stay as they were.
   if (!r.sequence.empty()) {
     nlohmann::json sequence = nlohmann::json::array();

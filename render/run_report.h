@@ -69,6 +69,7 @@ struct RunReport {
   // the JSON's "dacrt" object, only in runs of a batch tracer.
   std::optional<FilterStats> dacrt;
   std::string shading = "thesis";  // --shading: thesis, whitted or ao
+  std::optional<std::string> stage;  // --stage: fragment or compute (-r 2 only; null elsewhere)
   std::string compact = "off";     // --compact: off, on or always (-r 2 only; off elsewhere)
   std::optional<ConeReport> cone;  // --cone: the JSON's "cone" object
 };

@@ -187,6 +187,7 @@ void describeRun(const RunSettings& o, const Structure* structure, RunReport& re
   report.width = o.width, report.height = o.height, report.bounces = o.bounces, report.repeats = o.repeats;
   report.shading = shadingModeName(o.shading.mode);
   report.compact = o.renderer == RendererId::Gpu ? compactionName(o.gpu.compact) : "off";
+  if (o.renderer == RendererId::Gpu) report.stage = streamStageName(o.gpu.stage);
   report.stepsVisitNodes = structure && o.renderer == RendererId::Cpu && structure->cpuStepsVisitNodes;
 }
 
@@ -331,6 +332,11 @@ RunReport renderSequence(const RunSettings& o, Progress& progress) {
 }  // namespace
 
 RunReport runSession(const RunSettings& o, Progress& progress) {
+  if (o.gpu.stage != StreamStage::Fragment && o.renderer != RendererId::Gpu)
+    throw std::runtime_error("--stage compute needs the GPU stream renderer (-r 2)");
+  // Every stream and kernel of the run (structure, renderer, compaction,
+  // cones, a sequence's rebuilt kernels) is made in the run's stage.
+  const StreamStageScope stage(o.renderer == RendererId::Gpu ? o.gpu.stage : StreamStage::Fragment);
   if (o.cone) checkConeRun(o);  // before anything is loaded
   if (!o.exportPath.empty()) return exportOnly(o, progress);
   if (o.frames > 0) return renderSequence(o, progress);

@@ -6,36 +6,127 @@
 #include <vector>
 
 namespace passtrace {
+namespace {
+
+// The variant's main: which element this invocation is, the kernel's main as
+// a function, then what the fragment stage's fixed function would do. A
+// subgroup's appends and counts are gathered by a ballot first
+// (GL_ARB_shader_ballot), so it touches the global counters once, not once
+// per element.
+const char* const kComputeMain = R"(
+layout(local_size_x = 64) in;
+uniform uvec2 uStreamSize_;  // the stream's width and the rows the dispatch covers
+uniform uint uRowsRun_;      // the rows whose elements run (the row limit)
+uniform uint uElementList_;  // 0: every element of those rows, 1: the active list
+uniform uint uTileBits_;     // every element: the dispatch is 2^uTileBits_ groups of 8x8 tiles
+uniform uint uWriteMask_;    // bit N: output N is stored
+uniform uint uCull_;         // 1: build the next active list from the elements that discard
+uniform uint uCountPassed_;  // 1: count the elements that do not discard
+layout(std430, binding = 7) readonly buffer ActiveList_ { uint activeHeader_[4]; uint activeIndex_[]; };
+layout(std430, binding = 6) buffer NextList_ { uint nextHeader_[4]; uint nextIndex_[]; };
+layout(std430, binding = 5) buffer PassedCount_ { uint passedCount_; };
+uint laneCount_(uint64_t lanes) { uvec2 v = unpackUint2x32(lanes); return uint(bitCount(v.x) + bitCount(v.y)); }
+uint lowestLane_(uint64_t lanes) {
+  uvec2 v = unpackUint2x32(lanes);
+  return uint(v.x != 0u ? findLSB(v.x) : 32 + findLSB(v.y));
+}
+
+void main() {
+  uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+  uint element = 0u;
+  uvec2 pixel = uvec2(0u);
+  bool live;
+  if (uElementList_ != 0u) {
+    uint entry = group * 64u + gl_LocalInvocationIndex;
+    live = entry < activeHeader_[3];
+    if (live) {
+      element = activeIndex_[entry];
+      pixel = uvec2(element % uStreamSize_.x, element / uStreamSize_.x);
+    }
+  } else {
+    uint tilesPerRow = (uStreamSize_.x + 7u) / 8u;
+    uint tiles = tilesPerRow * ((uStreamSize_.y + 7u) / 8u);
+    // Group g runs the tile whose index is g's bits reversed (tiles rounded
+    // up to a power of two, 2^uTileBits_): a driver that splits a dispatch
+    // into contiguous ranges of groups, one per thread (llvmpipe), then gives
+    // every thread tiles spread evenly over the whole stream.
+    uint tile = uTileBits_ == 0u ? 0u : bitfieldReverse(group) >> (32u - uTileBits_);
+    pixel = uvec2((tile % tilesPerRow) * 8u + (gl_LocalInvocationIndex & 7u),
+                  (tile / tilesPerRow) * 8u + (gl_LocalInvocationIndex >> 3u));
+    live = group < (1u << uTileBits_) && tile < tiles && all(lessThan(pixel, uStreamSize_));
+    element = pixel.y * uStreamSize_.x + pixel.x;
+  }
+  bool kept = false, passed = false;
+  if (live && pixel.y >= uRowsRun_) {
+    kept = uCull_ != 0u;  // past the row limit an element stays as it is, active
+  } else if (live) {
+    fragCoord_ = vec4(vec2(pixel) + 0.5, 0.5, 1.0);
+    discarded_ = false;
+    fragmentMain_();
+    passed = !discarded_;
+    kept = uCull_ != 0u && discarded_;
+    if (passed && uCull_ == 0u) {
+      ivec2 texel = ivec2(pixel);
+%STORES%    }
+  }
+  // The subgroup's first lane reserves the slots of every lane that keeps its element.
+  uint64_t keptLanes = ballotARB(kept);
+  bool first = gl_SubGroupInvocationARB == lowestLane_(ballotARB(true));
+  uint base = 0u;
+  if (first && keptLanes != 0ul) base = atomicAdd(nextHeader_[3], laneCount_(keptLanes));
+  base = readFirstInvocationARB(base);
+  if (kept) nextIndex_[base + laneCount_(keptLanes & gl_SubGroupLtMaskARB)] = element;
+  uint passedLanes = laneCount_(ballotARB(passed && uCountPassed_ != 0u));
+  if (first && passedLanes != 0u) atomicAdd(passedCount_, passedLanes);
+}
+)";
+
+}  // namespace
 
 std::string computeVariant(std::string source) {
-  if (std::regex_search(source, std::regex(R"(\bdiscard\s*;)")))
-    throw std::invalid_argument("the kernel discards fragments, which its compute variant cannot express");
+  const std::regex mainSignature(R"(\bvoid\s+main\s*\(\s*\))");
+  std::smatch mainAt;
+  if (!std::regex_search(source, mainAt, mainSignature)) throw std::invalid_argument("the kernel has no main()");
+  const std::regex discard(R"(\bdiscard\s*;)");
+  std::smatch firstDiscard;
+  if (std::regex_search(source, firstDiscard, discard) && firstDiscard.position() < mainAt.position())
+    throw std::invalid_argument("the kernel discards outside main(), which its compute variant cannot express");
+  source = std::regex_replace(source, discard, "{ discarded_ = true; return; }");
+  source = std::regex_replace(source, std::regex(R"(\bgl_FragDepth\b)"), "fragDepth_");
   source = std::regex_replace(source, std::regex(R"(\bgl_FragCoord\b)"), "fragCoord_");
   source = std::regex_replace(source, std::regex(R"(\bgl_HelperInvocation\b)"), "false");
   source = std::regex_replace(source, std::regex(R"(layout\s*\(\s*early_fragment_tests\s*\)\s*in\s*;)"), "");
-  // After "#version": the next line is an assembled file's #line, so driver
-  // logs still name the kernel's own files and lines.
-  source.insert(source.find('\n') + 1, "vec4 fragCoord_;\n");
+  // The variant's globals go after "#version", before any code that uses
+  // them; #extension lines must precede them, so they move up too, each
+  // leaving an empty line. The next line is an assembled file's #line, so
+  // driver logs still name the kernel's own files and lines.
+  std::string head;
+  const std::regex extension(R"((^|\n)(#extension[^\n]*))");
+  for (std::sregex_iterator it(source.begin(), source.end(), extension), end; it != end; ++it)
+    head += (*it)[2].str() + "\n";
+  source = std::regex_replace(source, extension, "$1");
+  head += "#extension GL_ARB_shader_ballot : require\n#extension GL_ARB_gpu_shader_int64 : require\n";
+  source.insert(source.find('\n') + 1, head + "vec4 fragCoord_;\nfloat fragDepth_;\nbool discarded_;\n");
 
   std::vector<std::pair<std::string, std::string>> outputs;  // image unit, name
   const std::regex output(R"(layout\s*\(\s*location\s*=\s*(\d+)\s*\)\s*out\s+vec4\s+(\w+)\s*;)");
   for (std::sregex_iterator it(source.begin(), source.end(), output), end; it != end; ++it)
     outputs.emplace_back((*it)[1], (*it)[2]);
   source = std::regex_replace(source, output, "vec4 $2;");
-  source = std::regex_replace(source, std::regex(R"(\bvoid\s+main\s*\(\s*\))"), "void fragmentMain_()");
+  source = std::regex_replace(source, mainSignature, "void fragmentMain_()");
 
-  const std::string group = std::to_string(kComputeGroupSize);
-  source += "\nlayout(local_size_x = " + group + ", local_size_y = " + group + ") in;\nuniform uvec2 uComputeSize_;\n";
-  for (const auto& [unit, name] : outputs)
+  std::string stores;
+  for (const auto& [unit, name] : outputs) {
     source += "layout(rgba32f, binding = " + unit + ") uniform writeonly image2D " + name + "Image_;\n";
-  source +=
-      "void main() {\n"
-      "  if (any(greaterThanEqual(gl_GlobalInvocationID.xy, uComputeSize_))) return;\n"
-      "  fragCoord_ = vec4(vec2(gl_GlobalInvocationID.xy) + 0.5, 0.5, 1.0);\n"
-      "  fragmentMain_();\n";
-  for (const auto& [unit, name] : outputs)
-    source += "  imageStore(" + name + "Image_, ivec2(gl_GlobalInvocationID.xy), " + name + ");\n";
-  return source + "}\n";
+    stores += "      if ((uWriteMask_ & " + std::to_string(1u << std::stoi(unit)) + "u) != 0u) imageStore(" + name +
+              "Image_, texel, " + name + ");\n";
+  }
+  std::string main = kComputeMain;
+  main.replace(main.find("%STORES%"), 8, stores);
+  static_assert(kComputeGroupSize == 64 && kComputeTileSide == 8 && kActiveListBinding == 7 &&
+                    kNextListBinding == 6 && kPassedCountBinding == 5,
+                "kComputeMain spells these numbers out");
+  return source + main;
 }
 
 }  // namespace passtrace

@@ -80,4 +80,8 @@ GLuint linkComputeProgram(const std::string& name, const std::string& fragmentFi
   return link(name, fragmentFile, {compile(GL_COMPUTE_SHADER, name, fragmentFile, defines, computeVariant)});
 }
 
+GLuint linkComputeShader(const std::string& name, const std::string& computeFile) {
+  return link(name, computeFile, {compile(GL_COMPUTE_SHADER, name, computeFile, {})});
+}
+
 }  // namespace passtrace

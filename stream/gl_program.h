@@ -18,5 +18,7 @@ GLuint linkProgram(const std::string& name, const std::string& vertexFile, const
 // with errors reported as above.
 GLuint linkComputeProgram(const std::string& name, const std::string& fragmentFile,
                           const std::vector<std::string>& defines = {});
+// A compute shader written as one (kernels_glsl/*.comp), reported as above.
+GLuint linkComputeShader(const std::string& name, const std::string& computeFile);
 
 }  // namespace passtrace

@@ -6,6 +6,11 @@
 #include "stream/gl_error.h"
 
 namespace passtrace {
+namespace {
+
+InOutStream* enabledStream = nullptr;  // as the GL's bound framebuffer: one per context
+
+}  // namespace
 
 void InOutStream::checkSize(int width, int height) {
   GLint maxSize = 0, maxViewport[2] = {0, 0};
@@ -17,23 +22,32 @@ void InOutStream::checkSize(int width, int height) {
     throw GlError("stream size " + size + " is outside 1.." + std::to_string(limit) + " (the GL limit)");
 }
 
-InOutStream::InOutStream(int width, int height, int surfaceCount) : width_(width), height_(height) {
+InOutStream::InOutStream(int width, int height, int surfaceCount, StreamStage stage)
+    : width_(width), height_(height), stage_(stage) {
   checkSize(width, height);
-  GLint maxDrawBuffers = 0;
-  glGetIntegerv(GL_MAX_DRAW_BUFFERS, &maxDrawBuffers);
-  if (surfaceCount < 1 || surfaceCount > kMaxSurfaces || surfaceCount > maxDrawBuffers)
-    throw GlError("a stream has 1.." + std::to_string(std::min(kMaxSurfaces, maxDrawBuffers)) + " surfaces, not " +
+  // The compute stage stores each output location to an image unit.
+  GLint maxOutputs = 0;
+  glGetIntegerv(stage == StreamStage::Compute ? GL_MAX_IMAGE_UNITS : GL_MAX_DRAW_BUFFERS, &maxOutputs);
+  if (surfaceCount < 1 || surfaceCount > kMaxSurfaces || surfaceCount > maxOutputs)
+    throw GlError("a stream has 1.." + std::to_string(std::min(kMaxSurfaces, maxOutputs)) + " surfaces, not " +
                   std::to_string(surfaceCount));
 
-  glCreateFramebuffers(1, &framebuffer_);
   surfaces_.resize(surfaceCount);
   glCreateTextures(GL_TEXTURE_2D, surfaceCount, surfaces_.data());
   for (int i = 0; i < surfaceCount; ++i) {
     glTextureStorage2D(surfaces_[i], 1, GL_RGBA32F, width, height);
     glTextureParameteri(surfaces_[i], GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(surfaces_[i], GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glNamedFramebufferTexture(framebuffer_, GL_COLOR_ATTACHMENT0 + i, surfaces_[i], 0);
   }
+  if (stage == StreamStage::Compute) {
+    active_ = std::make_unique<ActiveElements>(width, height);
+    writeSurfaces_ = {0};
+    checkGlError("creating a " + std::to_string(width) + "x" + std::to_string(height) + " compute-stage stream");
+    return;
+  }
+  glCreateFramebuffers(1, &framebuffer_);
+  for (int i = 0; i < surfaceCount; ++i)
+    glNamedFramebufferTexture(framebuffer_, GL_COLOR_ATTACHMENT0 + i, surfaces_[i], 0);
   glCreateTextures(GL_TEXTURE_2D, 1, &depth_);
   glTextureStorage2D(depth_, 1, GL_DEPTH_COMPONENT32F, width, height);
   glNamedFramebufferTexture(framebuffer_, GL_DEPTH_ATTACHMENT, depth_, 0);
@@ -49,13 +63,18 @@ InOutStream::InOutStream(int width, int height, int surfaceCount) : width_(width
 }
 
 InOutStream::~InOutStream() {
+  if (enabledStream == this) enabledStream = nullptr;
   glDeleteFramebuffers(1, &framebuffer_);
   glDeleteTextures(static_cast<GLsizei>(surfaces_.size()), surfaces_.data());
   glDeleteTextures(1, &depth_);
   if (savedDepth_ != 0) glDeleteTextures(1, &savedDepth_);
 }
 
+InOutStream* InOutStream::enabled() { return enabledStream; }
+
 void InOutStream::enable() {
+  enabledStream = this;
+  if (stage_ == StreamStage::Compute) return;  // kernels store to images: no framebuffer
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
   glViewport(0, 0, width_, height_);
   if (rowLimit_ > 0 && rowLimit_ < height_) {
@@ -67,12 +86,18 @@ void InOutStream::enable() {
 }
 
 void InOutStream::disable() {
+  if (enabledStream == this) enabledStream = nullptr;
+  if (stage_ == StreamStage::Compute) return;
   glDisable(GL_SCISSOR_TEST);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 void InOutStream::setWriteSurfaces(const std::vector<int>& surfaces) {
   if (surfaces == writeSurfaces_) return;
+  if (stage_ == StreamStage::Compute) {  // StreamKernel binds the images per dispatch
+    writeSurfaces_ = surfaces;
+    return;
+  }
   std::vector<GLenum> buffers;
   for (int s : surfaces) buffers.push_back(s == kNoSurface ? GL_NONE : GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(s));
   glNamedFramebufferDrawBuffers(framebuffer_, static_cast<GLsizei>(buffers.size()), buffers.data());
@@ -84,6 +109,7 @@ void InOutStream::clearSurface(int surface, const glm::vec4& value) {
 }
 
 void InOutStream::clearDepth(float depth) {
+  if (active_) return active_->reset(depth > 0.5f);  // kernels draw at 0.5 with GL_LESS
   glClearTexImage(depth_, 0, GL_DEPTH_COMPONENT, GL_FLOAT, &depth);
 }
 
@@ -102,6 +128,7 @@ std::vector<glm::vec4> InOutStream::read(int surface) const {
 }
 
 std::vector<float> InOutStream::readDepth() const {
+  if (active_) return active_->read();
   std::vector<float> depth(elementCount());
   glGetTextureImage(depth_, 0, GL_DEPTH_COMPONENT, GL_FLOAT, static_cast<GLsizei>(depth.size() * sizeof(float)),
                     depth.data());
@@ -110,6 +137,7 @@ std::vector<float> InOutStream::readDepth() const {
 }
 
 void InOutStream::saveDepth() {
+  if (active_) return active_->save();
   if (savedDepth_ == 0) {
     glCreateTextures(GL_TEXTURE_2D, 1, &savedDepth_);
     glTextureStorage2D(savedDepth_, 1, GL_DEPTH_COMPONENT32F, width_, height_);
@@ -119,6 +147,7 @@ void InOutStream::saveDepth() {
 }
 
 void InOutStream::restoreDepth() {
+  if (active_) return active_->restore();
   if (savedDepth_ == 0) throw GlError("restoreDepth: no depth was saved");
   glCopyImageSubData(savedDepth_, GL_TEXTURE_2D, 0, 0, 0, 0, depth_, GL_TEXTURE_2D, 0, 0, 0, 0, width_, height_, 1);
   checkGlError("restoring stream depth");

@@ -5,13 +5,21 @@
 // which can change from pass to pass without re-creating anything. A kernel
 // may read and write the same surface as long as each fragment reads only its
 // own texel (GL 4.5 texture-barrier rules; StreamKernel issues the barrier).
+//
+// A stream made in the compute stage (stream/stream_stage.h) has no
+// framebuffer: its kernels store to the surfaces as images, and the active
+// elements are an ActiveElements list instead of the depth buffer. Its
+// depth calls keep their meaning (1 active, 0 finished).
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "stream/active_elements.h"
 #include "stream/gl.h"
+#include "stream/stream_stage.h"
 
 namespace passtrace {
 
@@ -20,8 +28,8 @@ class InOutStream {
   static constexpr int kMaxSurfaces = 8;
 
   // Throws GlError if the size is zero or beyond the GL limits, or the
-  // framebuffer is incomplete.
-  InOutStream(int width, int height, int surfaceCount);
+  // framebuffer is incomplete. The stage is the current one (StreamStageScope).
+  InOutStream(int width, int height, int surfaceCount, StreamStage stage = currentStreamStage());
   ~InOutStream();
   // Throws GlError unless a width x height stream fits the GL's limits.
   static void checkSize(int width, int height);
@@ -32,10 +40,13 @@ class InOutStream {
   int height() const { return height_; }
   int surfaceCount() const { return static_cast<int>(surfaces_.size()); }
   size_t elementCount() const { return size_t(width_) * size_t(height_); }
+  StreamStage stage() const { return stage_; }
 
   // Binds the framebuffer and viewport: kernels executed until disable() write here.
   void enable();
   void disable();
+  // The stream enable() was last called on (and not disabled), or null.
+  static InOutStream* enabled();
   // Kernel output location k goes to surfaces[k]; kNoSurface drops it
   // (nothing is written for that output).
   static constexpr int kNoSurface = -1;
@@ -44,6 +55,12 @@ class InOutStream {
   // Kernels executed after enable() run only on the first `rows` rows (a
   // scissor: llvmpipe then bins nothing beyond them); 0 = every row.
   void setRowLimit(int rows) { rowLimit_ = rows; }
+  // The rows kernels run on: the row limit, or every row.
+  int rowsRun() const { return rowLimit_ > 0 && rowLimit_ < height_ ? rowLimit_ : height_; }
+  // The surface output location k goes to (setWriteSurfaces), or kNoSurface.
+  const std::vector<int>& writeSurfaces() const { return writeSurfaces_; }
+  // The compute stage's active elements (null in the fragment stage).
+  ActiveElements* activeElements() { return active_.get(); }
 
   GLuint surfaceTexture(int surface) const { return surfaces_.at(surface); }
 
@@ -66,6 +83,8 @@ class InOutStream {
 
  private:
   int width_, height_;
+  StreamStage stage_;
+  std::unique_ptr<ActiveElements> active_;  // compute stage only
   GLuint framebuffer_ = 0;
   GLuint depth_ = 0;
   GLuint savedDepth_ = 0;  // saveDepth()'s copy; 0 until first used

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "stream/active_elements.h"
 #include "stream/compute_variant.h"
 #include "stream/const_input_stream.h"
 #include "stream/gl_error.h"
@@ -13,7 +14,7 @@ namespace passtrace {
 
 StreamKernel::StreamKernel(std::string name, const std::string& glslFile, Depth depth,
                            const std::vector<std::string>& defines)
-    : StreamKernel(std::move(name), glslFile, depth, Stage::Fragment, defines) {}
+    : StreamKernel(std::move(name), glslFile, depth, currentStreamStage(), defines) {}
 
 StreamKernel::StreamKernel(std::string name, const std::string& glslFile, Stage stage,
                            const std::vector<std::string>& defines)
@@ -103,18 +104,48 @@ void StreamKernel::bindResources() {
 void StreamKernel::dispatch(int width, int height) {
   if (stage_ != Stage::Compute) throw GlError("kernel " + name_ + ": dispatch() needs Stage::Compute");
   bindResources();
-  for (const auto& [unit, texture] : outputs_)
+  GLuint mask = 0;
+  for (const auto& [unit, texture] : outputs_) {
     glBindImageTexture(unit, texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-  glProgramUniform2ui(program_, location("uComputeSize_"), GLuint(width), GLuint(height));
-  const auto groups = [](int n) { return GLuint((n + kComputeGroupSize - 1) / kComputeGroupSize); };
-  glDispatchCompute(groups(width), groups(height), 1);
-  // Later passes read the outputs as textures (or images), and stacks as storage.
-  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    mask |= 1u << unit;
+  }
+  glProgramUniform1ui(program_, location("uWriteMask_"), mask);
+  if (!dispatchElements_ || dispatchElements_->width() != width || dispatchElements_->height() != height)
+    dispatchElements_ = std::make_unique<ActiveElements>(width, height);
+  dispatchElements_->reset(true);
+  dispatchElements_->dispatch(program_, height, false, false);
   checkGlError("dispatching kernel " + name_);
 }
 
+// The compute stage: the outputs the stream's write surfaces name become
+// image stores, the elements the active ones.
+uint64_t StreamKernel::executeCompute(bool countFragments) {
+  InOutStream* stream = InOutStream::enabled();
+  if (!stream || stream->stage() != Stage::Compute)
+    throw GlError("kernel " + name_ + ": a compute-stage kernel runs on an enabled compute-stage stream");
+  bindResources();
+  GLuint mask = 0;
+  const std::vector<int>& writes = stream->writeSurfaces();
+  for (int k = 0; k < stream->surfaceCount(); ++k) {
+    const int surface = k < int(writes.size()) ? writes[size_t(k)] : InOutStream::kNoSurface;
+    // The cull kernel only retires elements (as its colour mask off does).
+    const bool written = surface != InOutStream::kNoSurface && depth_ != Depth::Cull;
+    // An unwritten unit still gets a texture of the right format; nothing is stored to it.
+    glBindImageTexture(GLuint(k), stream->surfaceTexture(written ? surface : k), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                       GL_RGBA32F);
+    if (written) mask |= 1u << k;
+  }
+  glProgramUniform1ui(program_, location("uWriteMask_"), mask);
+  const uint64_t count = stream->activeElements()->dispatch(program_, stream->rowsRun(),
+                                                            depth_ == Depth::Cull, countFragments);
+  checkGlError("executing kernel " + name_);
+  return count;
+}
+
 uint64_t StreamKernel::execute(bool countFragments) {
-  if (stage_ != Stage::Fragment) throw GlError("kernel " + name_ + ": execute() needs Stage::Fragment");
+  if (stage_ == Stage::Compute) return executeCompute(countFragments);
+  if (InOutStream* stream = InOutStream::enabled(); stream && stream->stage() != Stage::Fragment)
+    throw GlError("kernel " + name_ + ": a fragment-stage kernel runs on an enabled fragment-stage stream");
   bindResources();
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);

@@ -6,22 +6,27 @@
 // occlusion-query count of fragments that passed the depth test and were not
 // discarded.
 //
-// Stage::Compute builds the same file as a compute shader instead
-// (compute_variant.h) for measuring the fragment-pass model against it:
-// dispatch() runs every element, with no depth test and no count, and
-// writes the surfaces bindOutput() named.
+// In the compute stage (stream/stream_stage.h) the same file is built as a
+// compute shader (compute_variant.h), and execute() runs it over the enabled
+// stream's active elements (stream/active_elements.h) with the same meaning:
+// the same elements run, write the same surfaces, and are counted alike.
+// dispatch() runs a compute-stage kernel over every element of a size, with
+// the outputs bindOutput() named, outside any stream (measurements).
 
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "stream/gl.h"
+#include "stream/stream_stage.h"
 
 namespace passtrace {
 
+class ActiveElements;
 class ConstInputStream;
 class InOutStream;
 class StorageBuffer;
@@ -34,11 +39,12 @@ class StreamKernel {
   };
 
   // Compiles and links `glslFile` (a kernels_glsl/ file) with the shared quad
-  // vertex program. Throws GlError naming the kernel, file, line and the
-  // driver's log on failure.
+  // vertex program, or as a compute shader, in the current stage. Throws
+  // GlError naming the kernel, file, line and the driver's log on failure.
   StreamKernel(std::string name, const std::string& glslFile, Depth depth = Depth::Test,
                const std::vector<std::string>& defines = {});
-  enum class Stage { Fragment, Compute };
+  using Stage = StreamStage;
+  // In the stage given.
   StreamKernel(std::string name, const std::string& glslFile, Stage stage,
                const std::vector<std::string>& defines = {});
   ~StreamKernel();
@@ -64,7 +70,9 @@ class StreamKernel {
   // executions.
   void bindStorage(GLuint binding, const StorageBuffer& buffer);
 
-  // Stage::Fragment only.
+  // Runs the kernel over the active elements of the enabled stream, which
+  // must be of the kernel's stage. With countFragments, returns how many
+  // of them did not discard (the fragment stage's occlusion query).
   uint64_t execute(bool countFragments = false);
 
   // Stage::Compute only: the surface that `layout(location = location) out`
@@ -72,6 +80,7 @@ class StreamKernel {
   void bindOutput(GLuint location, const InOutStream& stream, int surface);
   // Stage::Compute only: runs the kernel over width x height elements.
   void dispatch(int width, int height);
+  StreamStage stage() const { return stage_; }
 
  private:
   StreamKernel(std::string name, const std::string& glslFile, Depth depth, Stage stage,
@@ -80,6 +89,7 @@ class StreamKernel {
   void bindTexture(const char* sampler, GLuint texture);
 
   void bindResources();
+  uint64_t executeCompute(bool countFragments);
 
   std::string name_;
   Depth depth_;
@@ -90,7 +100,8 @@ class StreamKernel {
   std::map<std::string, GLint> locations_;
   std::map<std::string, std::pair<GLuint, GLuint>> textures_;  // sampler -> (unit, texture)
   std::map<GLuint, const StorageBuffer*> storage_;             // binding point -> buffer
-  std::map<GLuint, GLuint> outputs_;                           // compute: image unit -> texture
+  std::map<GLuint, GLuint> outputs_;                           // dispatch(): image unit -> texture
+  std::unique_ptr<ActiveElements> dispatchElements_;            // dispatch()'s every-element list
 };
 
 }  // namespace passtrace

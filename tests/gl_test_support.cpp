@@ -12,6 +12,14 @@ GlContext& glContext() {
     const char* backend = std::getenv("PASSTRACE_GL_BACKEND");
     return GlContext::create(parseGlBackend(backend ? backend : "auto"));
   }();
+  // PASSTRACE_STREAM_STAGE=compute runs the GL tests' streams and kernels in
+  // the compute stage (stream/stream_stage.h), as -r 2 --stage compute does.
+  static const StreamStageScope stage([] {
+    const char* name = std::getenv("PASSTRACE_STREAM_STAGE");
+    const std::optional<StreamStage> parsed = parseStreamStage(name ? name : "fragment");
+    if (!parsed) throw std::runtime_error(std::string("PASSTRACE_STREAM_STAGE: not fragment or compute: ") + name);
+    return *parsed;
+  }());
   return *context;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Shared set-up for tests that need OpenGL: one context per test process
-// (PASSTRACE_GL_BACKEND picks the backend, default auto), and a ray stream
+// (PASSTRACE_GL_BACKEND picks the backend, default auto; PASSTRACE_STREAM_STAGE
+// the stage of its streams and kernels, default fragment), and a ray stream
 // that traces hand-made rays through a GpuTraversal.
 
 #include <memory>

@@ -113,52 +113,120 @@ TEST_F(GlTest, RayGenerationMatchesCameraContract) {
   EXPECT_LT(glm::dot(glm::vec3(direction[0]), basis.right), 0.0f);
 }
 
-// The compute variant of a kernel (StreamKernel::Stage::Compute) writes what
-// its fragment pass writes, bit for bit: here all seven surfaces of ray
-// generation, on a stream whose sides are not multiples of the work group's.
+// The compute stage (stream/stream_stage.h) runs a kernel's compute variant
+// over the stream's active elements and writes what its fragment pass
+// writes, bit for bit: here all seven surfaces of ray generation, on a
+// stream whose sides are not multiples of the work group's tile, first over
+// every element, then over those a cull left active.
 TEST_F(GlTest, ComputeStageWritesWhatTheFragmentPassWrites) {
   const int w = 37, h = 23;
   const CameraBasis basis = makeCameraBasis(CameraSpec{{1.0f, 2.0f, 3.0f}, {0.5f, -1.0f, 0.25f}, {0, 1, 0}, 52.0f}, w, h);
+  std::vector<glm::vec4> state(size_t(w * h));
+  for (size_t i = 0; i < state.size(); ++i) state[i].w = (i * 7919) % 3 == 0 ? 0.0f : 1.0f;  // a third finished
   std::vector<std::vector<glm::vec4>> written[2];
+  uint64_t retired[2] = {0, 0};
+  std::vector<float> active[2];
   for (const auto stage : {StreamKernel::Stage::Fragment, StreamKernel::Stage::Compute}) {
-    InOutStream rays(w, h, kRaySurfaceCount);
+    const StreamStageScope scope(stage);
+    InOutStream rays(w, h, kRaySurfaceCount), flags(w, h, 1);
     for (int s = 0; s < kRaySurfaceCount; ++s) rays.upload(s, std::vector<glm::vec4>(size_t(w * h), glm::vec4(-7.0f)));
-    StreamKernel raygen("raygen", "raygen.frag", stage);
+    flags.upload(0, state);
+    StreamKernel raygen("raygen", "raygen.frag");
+    StreamKernel cull("cull", "cull.frag", StreamKernel::Depth::Cull);
+    cull.bindInput("uState", flags, 0);
     setRaygenCamera(raygen, basis);
-    if (stage == StreamKernel::Stage::Fragment) {
-      rays.enable();
-      rays.clearDepth(1.0f);
-      rays.setWriteSurfaces({0, 1, 2, 3, 4, 5, 6});
-      raygen.execute();
-      rays.disable();
-    } else {
-      for (int s = 0; s < kRaySurfaceCount; ++s) raygen.bindOutput(GLuint(s), rays, s);
-      raygen.dispatch(w, h);
-    }
+    rays.enable();
+    rays.clearDepth(1.0f);
+    rays.setWriteSurfaces({0, 1, 2, 3, 4, 5, 6});
+    raygen.execute();
+    for (int s = 0; s < kRaySurfaceCount; ++s) written[int(stage)].push_back(rays.read(s));
+    retired[int(stage)] = cull.execute(true);
+    active[int(stage)] = rays.readDepth();
+    setRaygenCamera(raygen, makeCameraBasis(CameraSpec{{-1.0f, 0.0f, 0.0f}, {0, 0, 0}, {0, 1, 0}, 40.0f}, w, h));
+    rays.setWriteSurfaces({InOutStream::kNoSurface, 1});  // only the directions: origins keep the first camera's
+    raygen.execute();
+    rays.disable();
     for (int s = 0; s < kRaySurfaceCount; ++s) written[int(stage)].push_back(rays.read(s));
   }
-  for (int s = 0; s < kRaySurfaceCount; ++s)
+  for (size_t s = 0; s < written[0].size(); ++s)
     for (size_t i = 0; i < size_t(w * h); ++i)
-      ASSERT_EQ(written[1][s][i], written[0][s][i]) << "surface " << s << ", element " << i;
+      ASSERT_EQ(written[1][s][i], written[0][s][i]) << "surface " << s % kRaySurfaceCount << ", element " << i;
   EXPECT_EQ(written[1][kOriginSurface].back(), glm::vec4(basis.eye, float(RayKind::Nearest)));  // the last one ran
+  EXPECT_EQ(retired[1], retired[0]);
+  EXPECT_EQ(retired[1], uint64_t(std::count_if(state.begin(), state.end(), [](const glm::vec4& e) { return e.w == 0; })));
+  EXPECT_EQ(active[1], active[0]);
+  // Elements the cull retired kept the first camera's directions; the others took the second's.
+  const size_t finished = 0, live = 1;
+  ASSERT_EQ(state[finished].w, 0.0f);
+  ASSERT_NE(state[live].w, 0.0f);
+  EXPECT_EQ(written[1][kRaySurfaceCount + kDirectionSurface][finished], written[1][kDirectionSurface][finished]);
+  EXPECT_NE(written[1][kRaySurfaceCount + kDirectionSurface][live], written[1][kDirectionSurface][live]);
 }
 
-// A fragment kernel that discards writes nothing where it does, which a
-// compute shader's stores cannot express: no compute variant.
-TEST_F(GlTest, DiscardingKernelHasNoComputeVariant) {
-  try {
-    StreamKernel cull("cull", "cull.frag", StreamKernel::Stage::Compute);
-    FAIL() << "built a compute variant of a discarding kernel";
-  } catch (const GlError& e) {
-    EXPECT_NE(std::string(e.what()).find("kernel cull (cull.frag): the kernel discards"), std::string::npos) << e.what();
+// The compute stage's active set follows the depth buffer's rules: a cull
+// of the active elements counts what it retires and keeps the rest active;
+// the row limit bounds what runs; saveDepth/restoreDepth bring a set back.
+TEST_F(GlTest, ComputeStageKeepsTheActiveSetAsTheDepthBufferDoes) {
+  const int w = 19, h = 11;
+  std::vector<glm::vec4> state(size_t(w * h), glm::vec4(1.0f));
+  for (size_t i = 0; i < state.size(); i += 4) state[i].w = 0.0f;
+  std::vector<float> seen[2][4];
+  uint64_t counts[2][4] = {};
+  for (const auto stage : {StreamStage::Fragment, StreamStage::Compute}) {
+    const StreamStageScope scope(stage);
+    InOutStream flags(w, h, 1);
+    StreamKernel cull("cull", "cull.frag", StreamKernel::Depth::Cull);
+    cull.bindInput("uState", flags, 0);
+    flags.upload(0, state);
+    flags.enable();
+    flags.clearDepth(1.0f);
+    counts[int(stage)][0] = cull.execute(true);  // every fourth element retires
+    seen[int(stage)][0] = flags.readDepth();
+    flags.saveDepth();
+    counts[int(stage)][1] = cull.execute(true);  // nothing more to retire
+    for (size_t i = 1; i < state.size(); i += 4) state[i].w = 0.0f;
+    flags.upload(0, state);
+    flags.setRowLimit(5);
+    flags.enable();  // the limit applies from the next enable()
+    counts[int(stage)][2] = cull.execute(true);  // every fourth + 1, in the first five rows
+    seen[int(stage)][1] = flags.readDepth();
+    flags.restoreDepth();
+    seen[int(stage)][2] = flags.readDepth();
+    flags.setRowLimit(0);
+    flags.enable();
+    flags.clearDepth(0.0f);
+    counts[int(stage)][3] = cull.execute(true);  // nothing is active
+    seen[int(stage)][3] = flags.readDepth();
+    flags.disable();
+    for (size_t i = 1; i < state.size(); i += 4) state[i].w = 1.0f;
   }
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_EQ(counts[1][k], counts[0][k]) << "count " << k;
+    EXPECT_EQ(seen[1][k], seen[0][k]) << "depth " << k;
+  }
+  EXPECT_EQ(counts[1][0], uint64_t((w * h + 3) / 4));
+  EXPECT_EQ(counts[1][1], 0u);
+  EXPECT_EQ(counts[1][2], uint64_t((5 * w - 1 + 3) / 4));
+  EXPECT_EQ(counts[1][3], 0u);
+}
+
+// A kernel runs only on streams of its own stage: the mix is a one-line error.
+TEST_F(GlTest, AKernelRefusesAStreamOfTheOtherStage) {
+  InOutStream compute(4, 4, 1, StreamStage::Compute), fragment(4, 4, 1, StreamStage::Fragment);
+  StreamKernel onFragment("raygen", "raygen.frag", StreamStage::Fragment);
+  StreamKernel onCompute("raygen", "raygen.frag", StreamStage::Compute);
+  compute.enable();
+  EXPECT_THROW(onFragment.execute(), GlError);
+  fragment.enable();
+  EXPECT_THROW(onCompute.execute(), GlError);
+  fragment.disable();
 }
 
 // Runs test_functions.frag with `define` over elements given as up to 5 input surfaces.
 std::vector<glm::vec4> runFunctionKernel(const char* define, const std::vector<std::vector<glm::vec4>>& inputs,
                                          StreamKernel::Stage stage = StreamKernel::Stage::Fragment) {
   const int n = int(inputs[0].size());
-  InOutStream in(n, 1, 5), out(n, 1, 1);
+  InOutStream in(n, 1, 5), out(n, 1, 1, stage);
   StreamKernel kernel("test", "test_functions.frag", stage, {define});
   const char* names[] = {"uIn0", "uIn1", "uIn2", "uIn3", "uIn4"};
   for (size_t s = 0; s < inputs.size(); ++s) {
