@@ -16,6 +16,9 @@ shared machine):
   ray kinds   traversal alone of the renderer's primary, shadow and AO rays,
               one thread: bvh8-packet and bvh8 against Embree's single-ray
               calls and its packets (measure_ray_kinds);
+  stages      the fastest stream rows in the fragment and the compute stage
+              (--stage), alternated in rounds; the SMs each stage ran on in the
+              last GPU run (scripts/bench_stages.py);
   runs        every registry row (`passtrace --list --json`, so rows added later
               are picked up) on each renderer it runs on, primary rays (-b 1),
               --threads 2; the CPU rows and Embree (-r 3) also on 1 thread on
@@ -32,6 +35,7 @@ import json
 import os
 import pathlib
 import subprocess
+import bench_stages
 from bench_report import write_atomically
 
 SCENES = ["bunny", "kitchen", "robots"]
@@ -352,6 +356,7 @@ def write_report(out_dir, results, records, baselines, scenes):
                   "G tests/s", "% of FP32 peak", "% of triad bandwidth", "% of texel-fetch rate"],
                  roofline_rows(by, machine, fetch_rate(baselines.get("fetch")))), "",
     ]
+    lines += bench_stages.section(baselines.get("stages"), num, md_table)
     if baselines["errors"]:
         lines += ["## Baselines that failed", ""] + [f"- {e}" for e in baselines["errors"]] + [""]
     failed = [(m_["key"], rec.get("error")) for m_, rec in records if rec and rec.get("status") == "error"]
@@ -378,6 +383,8 @@ def main(args, binary, registry, out, bart, bart_ok, bench, command):
             "machine": {}, "embree": {}, "errors": ["no results.json with baselines"]}
     else:
         baselines = measure_baselines(binary, scenes, size, repeats, bart, bart_ok, bench)
+        baselines["stages"] = bench_stages.measure(binary, scenes[0], size, repeats,
+                                                   [a["name"] for a in registry["accelerators"]], bench.log)
     # Always rerun (unless --report-only): the ratios against the baselines hold only within one run.
     # The stream rows at passtrace's default -l 0: one pass per bounce (issue 17's tuned loop limit).
     runner = bench.Runner(binary, bart, out, args.timeout or 900, True, loop_limit=None)

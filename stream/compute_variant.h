@@ -36,7 +36,9 @@ constexpr int kPassedCountBinding = 5;  // elements that did not discard (the oc
 //     appended to the next active list, and the others are retired;
 //   - with `uCountPassed_`, the elements that did not discard are counted.
 // Throws std::invalid_argument for a discard outside main, which the
-// variant's return cannot express.
+// variant's return cannot express. The variant needs GL_ARB_shader_ballot and
+// GL_ARB_gpu_shader_int64 (llvmpipe and NVIDIA's driver have both); without
+// them its compile fails with the driver's message, one line.
 std::string computeVariant(std::string fragmentSource);
 
 }  // namespace passtrace
