@@ -68,7 +68,7 @@ struct Raw {
 void addSceneOptions(CLI::App& app, Options& o, Raw& raw) {
   app.add_option("-s,--scene", o.scene,
                  "0 cows, 1 robots, 2 kitchen, 3 bunny, 4 cornell (thesis order), by number or name; spheres "
-                 "(procedural); or a .obj .aff .nff .gltf .glb .ply .stl .off .dae .3ds .x .fbx file")
+                 "(procedural); conference, sibenik, sponza, teapot, dragon (--scenes-dir); or a .obj .aff .nff .gltf .glb .ply .stl .off .dae .3ds .x .fbx file")
       ->capture_default_str()->group(kSceneGroup);
   app.add_option("--triangles", o.triangles, "size of the procedural 'spheres' scene (at least this many triangles)")
       ->check(CLI::Range(kSphereFieldMinTriangles, kSphereFieldMaxTriangles))->capture_default_str()
@@ -76,6 +76,9 @@ void addSceneOptions(CLI::App& app, Options& o, Raw& raw) {
   app.add_option("--bart-dir", o.bartDir,
                  "where the BART scenes kitchen/ and robots/ are (default: $PASSTRACE_BART_DIR, else "
                  "../shared/scenes/bart)")->group(kSceneGroup);
+  app.add_option("--scenes-dir", o.scenesDir,
+                 "where the real scenes conference, sibenik, sponza, teapot, dragon are (default: "
+                 "$PASSTRACE_SCENES_DIR, else ../shared/scenes/real)")->group(kSceneGroup);
   app.add_option("--eye", raw.eye, "camera position x,y,z in the file's units (default: the scene's view)")
       ->group(kSceneGroup);
   app.add_option("--look-at", raw.lookAt, "point the camera looks at, x,y,z")->group(kSceneGroup);

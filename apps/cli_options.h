@@ -27,6 +27,7 @@ struct Options {
   std::string scene = "bunny";      // -s: name or file
   uint64_t triangles = kSphereFieldDefaultTriangles;  // --triangles: size of the "spheres" scene
   std::string bartDir;              // --bart-dir: where kitchen/ and robots/ are (else $PASSTRACE_BART_DIR)
+  std::string scenesDir;            // --scenes-dir: where the real scenes are (else $PASSTRACE_SCENES_DIR)
   float time = 0.0f;                // --time: AFF animation time
   int width = 512, height = 512;    // -w N, or --width/--height
   int bounces = 3;                  // -b: traces per path, primary and shadow rays included

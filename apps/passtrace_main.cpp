@@ -23,7 +23,8 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (options.list) {
-      const std::string text = options.listJson ? passtrace::catalogJson().dump(2) + "\n" : passtrace::catalogText();
+      const std::string text = options.listJson ? passtrace::catalogJson(options.scenesDir).dump(2) + "\n"
+                                                : passtrace::catalogText(options.scenesDir);
       if (options.json.empty()) std::cout << text;
       else {
         passtrace::OutputFiles outputs;

@@ -14,6 +14,7 @@ RunSettings toRunSettings(const Options& o) {
   s.structureGiven = o.accelGiven;
   s.scene = o.scene;
   if (!o.bartDir.empty()) s.sceneOptions.bartDir = o.bartDir;
+  if (!o.scenesDir.empty()) s.sceneOptions.realScenesDir = o.scenesDir;
   s.sceneOptions.time = o.time;
   s.sceneOptions.triangles = o.triangles;
   s.width = o.width, s.height = o.height;

@@ -4,6 +4,7 @@
 
 #include "accel/registry.h"
 #include "passtrace_version.h"
+#include "scenes/real_scenes.h"
 #include "scenes/scene_registry.h"
 
 namespace passtrace {
@@ -16,18 +17,27 @@ std::vector<std::string> rendererNames(const Structure& s) {
   return names;
 }
 
-// The names with thesis numbers; the procedural scene has none.
-std::vector<std::pair<std::string, nlohmann::json>> sceneRows() {
+// The names with thesis numbers; the procedural scene and the real scenes
+// (those found) have none.
+std::vector<std::pair<std::string, nlohmann::json>> sceneRows(const std::filesystem::path& realScenesDir) {
   std::vector<std::pair<std::string, nlohmann::json>> rows;
   const std::vector<std::string> builtin = builtinSceneNames();
   for (size_t i = 0; i < builtin.size(); ++i) rows.emplace_back(builtin[i], int(i));
   rows.emplace_back("spheres", nullptr);
+  for (const std::string& name : availableRealSceneNames(realScenesDir)) rows.emplace_back(name, nullptr);
   return rows;
+}
+
+// How the text catalog describes a scene without a thesis number.
+std::string unnumberedNote(const std::string& name) {
+  if (name == "spheres") return " (procedural, --triangles)";
+  const RealScene* real = findRealScene(name);
+  return real ? " (" + std::to_string(real->triangles) + " triangles; " + std::string(real->seeds) + ")" : "";
 }
 
 }  // namespace
 
-nlohmann::json catalogJson() {
+nlohmann::json catalogJson(const std::filesystem::path& realScenesDir) {
   nlohmann::json renderers = nlohmann::json::array();
   for (RendererId r : kRenderers) renderers.push_back({{"name", rendererName(r)}, {"id", int(r)}});
   nlohmann::json accelerators = nlohmann::json::array();
@@ -37,11 +47,11 @@ nlohmann::json catalogJson() {
                             {"number", s.number ? nlohmann::json(*s.number) : nlohmann::json(nullptr)},
                             {"description", s.description}});
   nlohmann::json scenes = nlohmann::json::array();
-  for (const auto& [name, number] : sceneRows()) scenes.push_back({{"name", name}, {"number", number}});
+  for (const auto& [name, number] : sceneRows(realScenesDir)) scenes.push_back({{"name", name}, {"number", number}});
   return {{"version", kVersion}, {"renderers", renderers}, {"accelerators", accelerators}, {"scenes", scenes}};
 }
 
-std::string catalogText() {
+std::string catalogText(const std::filesystem::path& realScenesDir) {
   std::string text = "Renderers (-r):\n";
   for (RendererId r : kRenderers) {
     // A ray tracer with no structure was left out of this build (Embree without libembree-dev).
@@ -101,10 +111,11 @@ std::string catalogText() {
     text += "  " + flag + value + readers + "\n";
   }
   text += "Scenes (-s NAME or number, or a .obj/.aff/.nff/.gltf/.glb file, or through Assimp a "
-          ".ply/.stl/.off/.dae/.3ds/.x/.fbx file):\n";
-  for (const auto& [name, number] : sceneRows())
+          ".ply/.stl/.off/.dae/.3ds/.x/.fbx file; the real scenes where --scenes-dir, $PASSTRACE_SCENES_DIR "
+          "or ../shared/scenes/real has them):\n";
+  for (const auto& [name, number] : sceneRows(realScenesDir))
     text += "  " + (number.is_null() ? std::string(" ") : std::to_string(int(number))) + " " + name +
-            (number.is_null() ? " (procedural, --triangles)" : "") + "\n";
+            unnumberedNote(name) + "\n";
   return text;
 }
 

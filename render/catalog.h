@@ -4,6 +4,7 @@
 // command line prints it for --list (text) and --list --json (the contract
 // scripts/bench.py and the tests read); --help shows the text.
 
+#include <filesystem>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -12,8 +13,10 @@ namespace passtrace {
 
 // {"version", "renderers": [{"name","id"}], "accelerators": [{"name",
 // "renderers", "number", "description"}], "scenes": [{"name","number"}]}.
-nlohmann::json catalogJson();
+// The scenes list the real benchmark scenes found under `realScenesDir`
+// (--scenes-dir; empty: $PASSTRACE_SCENES_DIR or ../shared/scenes/real).
+nlohmann::json catalogJson(const std::filesystem::path& realScenesDir = {});
 // The same as aligned text: one line per structure and per scene.
-std::string catalogText();
+std::string catalogText(const std::filesystem::path& realScenesDir = {});
 
 }  // namespace passtrace

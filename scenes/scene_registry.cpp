@@ -22,8 +22,10 @@
 #include "scenes/obj_loader.h"
 #include "scenes/off_reader.h"
 #include "scenes/ply_reader.h"
+#include "scenes/real_scenes.h"
 #include "scenes/scene_error.h"
 #include "scenes/scene_scale.h"
+#include "scenes/shared_scene_dir.h"
 
 namespace passtrace {
 namespace {
@@ -82,12 +84,6 @@ Scene loadFile(const fs::path& path, const SceneOptions& options) {
   return scene;
 }
 
-fs::path executableDir() {
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  return ec ? fs::path() : exe.parent_path();
-}
-
 // A BART scene: DIR/<scene>/aff/<file>.
 Scene loadBart(const std::string& name, const fs::path& relative, const SceneOptions& options) {
   fs::path dir = options.bartDir.empty() ? defaultBartDir() : options.bartDir;
@@ -114,16 +110,13 @@ CameraSpec framedCamera(const Aabb& box) {
 
 PointLight framedLight(const Aabb& box) { return PointLight{framedPoint(box, {1.5, 2.5, 2.0}), glm::vec3(1.0f)}; }
 
-fs::path defaultBartDir() {
-  if (const char* env = std::getenv("PASSTRACE_BART_DIR"); env != nullptr && *env != '\0') return fs::path(env);
-  std::error_code ec;
-  const fs::path relative = fs::path("..") / "shared" / "scenes" / "bart";
-  const fs::path cwd = fs::current_path(ec);
-  if (!ec && fs::is_directory(cwd / relative, ec)) return (cwd / relative).lexically_normal();
-  const fs::path exeDir = executableDir();
-  if (!exeDir.empty() && fs::is_directory(exeDir.parent_path() / relative, ec))
-    return (exeDir.parent_path() / relative).lexically_normal();
-  return {};
+fs::path defaultBartDir() { return findSharedSceneDir("PASSTRACE_BART_DIR", "bart"); }
+
+std::vector<std::string> availableRealSceneNames(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const RealScene& s : realScenes())
+    if (!realSceneFile(s, dir).empty()) names.emplace_back(s.name);
+  return names;
 }
 
 namespace {
@@ -155,6 +148,11 @@ Scene loadUnscaled(const std::string& nameOrPath, const SceneOptions& options) {
   if (nameOrPath == "spheres") return makeSphereField(options.triangles);
   if (nameOrPath == "robots") return loadBart("robots", fs::path("robots") / "aff" / "Robot.aff", options);
   if (nameOrPath == "kitchen") return loadBart("kitchen", fs::path("kitchen") / "aff" / "kitchen.aff", options);
+  if (const RealScene* real = findRealScene(nameOrPath)) {
+    Scene scene = loadFile(requireRealSceneFile(*real, options.realScenesDir), options);
+    applyRealScene(*real, scene);
+    return scene;
+  }
   if (nameOrPath == "bunny") {
     std::error_code ignored;
     if (!fs::exists(kBunnyPath, ignored))
@@ -169,7 +167,8 @@ Scene loadUnscaled(const std::string& nameOrPath, const SceneOptions& options) {
   std::error_code ignored;
   if (fs::exists(path, ignored) || path.has_extension()) return loadFile(path, options);
   throw SceneError("unknown scene '" + nameOrPath +
-                   "' (expected cows, robots, kitchen, bunny, cornell, spheres, 0-4 or a file path)");
+                   "' (expected cows, robots, kitchen, bunny, cornell, spheres, 0-4, conference, sibenik, sponza, "
+                   "teapot, dragon or a file path)");
 }
 
 bool isFinite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }

@@ -1,8 +1,9 @@
 #pragma once
 // Resolves a scene argument: a built-in name ("cornell", "bunny", "cows",
 // "robots", "kitchen", and the procedural "spheres" of any size), a thesis scene number ("0".."4" = cows, robots,
-// kitchen, bunny, cornell, the order of thesis table 1) or a path to a scene
-// file, dispatched by extension (.obj, .aff, .nff, .gltf, .glb).
+// kitchen, bunny, cornell, the order of thesis table 1), a real benchmark
+// scene's name ("conference", "sibenik", "sponza", "teapot", "dragon";
+// scenes/real_scenes.h) or a path to a scene file, dispatched by extension.
 
 #include <filesystem>
 #include <string>
@@ -17,16 +18,15 @@ struct SceneOptions {
   // Where the BART scenes live (holding kitchen/aff/kitchen.aff and
   // robots/aff/Robot.aff). Empty: defaultBartDir().
   std::filesystem::path bartDir;
+  // Where the real benchmark scenes live (--scenes-dir). Empty: defaultRealScenesDir().
+  std::filesystem::path realScenesDir;
   // The time at which AFF animated transforms are evaluated (--time).
   float time = 0.0f;
   // The size of the procedural "spheres" scene (--triangles; sphere_field.h).
   uint64_t triangles = kSphereFieldDefaultTriangles;
 };
 
-// $PASSTRACE_BART_DIR when set (even if it does not exist, so that a wrong
-// setting is reported rather than silently bypassed); else the first
-// existing one of ../shared/scenes/bart relative to the current directory and
-// relative to the parent of the executable's directory; else empty.
+// $PASSTRACE_BART_DIR, else ../shared/scenes/bart (shared_scene_dir.h); else empty.
 std::filesystem::path defaultBartDir();
 
 // Throws SceneError for an unknown name, an unsupported format, missing BART
@@ -40,6 +40,10 @@ Scene loadScene(const std::string& nameOrPath);  // default options
 
 // The built-in names in thesis order: cows, robots, kitchen, bunny, cornell.
 std::vector<std::string> builtinSceneNames();
+
+// The real benchmark scenes found under `dir` (--scenes-dir; empty: the
+// default places), in realScenes() order.
+std::vector<std::string> availableRealSceneNames(const std::filesystem::path& dir);
 
 // The framing that file scenes without their own view or light get: a
 // 45-degree view from the front (+z), slightly above, far enough back that the

@@ -23,6 +23,15 @@ std::string slurp(const fs::path& p) {
   return s.str();
 }
 
+double litFraction(const std::string& imageFile) {
+  int width = 0, height = 0;
+  const std::vector<float> rgb = readImage(imageFile, width, height);
+  size_t lit = 0;
+  for (size_t p = 0; p + 2 < rgb.size(); p += 3)
+    lit += std::any_of(rgb.begin() + long(p), rgb.begin() + long(p) + 3, [](float c) { return c > 0.2f; }) ? 1 : 0;
+  return width * height == 0 ? 0.0 : double(lit) / double(size_t(width) * size_t(height));
+}
+
 void CliTest::SetUp() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   std::string name = std::string(info->test_suite_name()) + "_" + info->name();
@@ -57,34 +66,49 @@ void CliTest::expectOneLineError(const RunResult& r, const std::string& mention)
   EXPECT_TRUE(outputs().empty()) << "an output was left behind: " << outputs().front();
 }
 
-void expectHitsMatchBruteForce(const std::string& file, const Scene& scene, int width, int height,
-                               double minFoundFraction, int allowedMismatches) {
+std::vector<Hit> bruteForceHits(const Scene& scene, int width, int height) {
+  const CameraBasis basis = makeCameraBasis(scene.camera, width, height);
+  std::vector<Hit> hits(size_t(width) * size_t(height));
+  for (int py = 0; py < height; ++py)
+    for (int px = 0; px < width; ++px) {
+      Hit& h = hits[size_t(py) * size_t(width) + size_t(px)];
+      h = intersectBruteForce(scene.triangles, primaryRay(basis, px, py), false);
+      h.t = std::ldexp(h.t, -scene.scaleExponent);  // the file's units, exactly
+    }
+  return hits;
+}
+
+void expectHitsMatch(const std::string& file, const std::vector<Hit>& expectedHits, int width, int height,
+                     double minFoundFraction, int allowedMismatches) {
   int w = 0, h = 0;
   const std::vector<HitRecord> hits = readHitBuffer(file, w, h);
   ASSERT_EQ(w, width);
   ASSERT_EQ(h, height);
-  const CameraBasis basis = makeCameraBasis(scene.camera, w, h);
+  ASSERT_EQ(expectedHits.size(), hits.size());
   int found = 0, mismatches = 0;
-  for (int py = 0; py < h; ++py)
-    for (int px = 0; px < w; ++px) {
-      const HitRecord& got = hits[size_t(py) * w + px];
-      Hit expected = intersectBruteForce(scene.triangles, primaryRay(basis, px, py), false);
-      expected.t = std::ldexp(expected.t, -scene.scaleExponent);  // the file's units, exactly
-      found += expected.found();
-      if (got.id == expected.id) {
-        if (expected.found()) EXPECT_NEAR(got.t, expected.t, 1e-5f * expected.t);
-        else EXPECT_EQ(got.t, kInfinity);
-        continue;
-      }
-      // Two triangles met at the same t (a shared edge or vertex).
-      const bool tie = expected.found() && got.id != kNoHit && std::abs(got.t - expected.t) <= 1e-5f * expected.t;
-      if (!tie) ++mismatches;
+  for (size_t i = 0; i < hits.size(); ++i) {
+    const HitRecord& got = hits[i];
+    const Hit& expected = expectedHits[i];
+    found += expected.found();
+    if (got.id == expected.id) {
+      if (expected.found()) EXPECT_NEAR(got.t, expected.t, 1e-5f * expected.t);
+      else EXPECT_EQ(got.t, kInfinity);
+      continue;
     }
+    // Two triangles met at the same t (a shared edge or vertex).
+    const bool tie = expected.found() && got.id != kNoHit && std::abs(got.t - expected.t) <= 1e-5f * expected.t;
+    if (!tie) ++mismatches;
+  }
   EXPECT_LE(mismatches, allowedMismatches);
   EXPECT_GE(found, minFoundFraction * w * h);
   if (minFoundFraction > 0) {
     EXPECT_GT(found, 0);
   }
+}
+
+void expectHitsMatchBruteForce(const std::string& file, const Scene& scene, int width, int height,
+                               double minFoundFraction, int allowedMismatches) {
+  expectHitsMatch(file, bruteForceHits(scene, width, height), width, height, minFoundFraction, allowedMismatches);
 }
 
 }  // namespace passtrace::test

@@ -20,6 +20,10 @@ struct RunResult {
 
 std::string slurp(const std::filesystem::path& p);
 
+// The fraction of an image's pixels with some channel above 0.2: how much of
+// a render is lit (issue 34's measure of a readable image).
+double litFraction(const std::string& imageFile);
+
 class CliTest : public ::testing::Test {
  protected:
   void SetUp() override;
@@ -48,5 +52,11 @@ void expectHitsMatchBruteForce(const std::string& file, const Scene& scene, int 
 inline void expectHitsMatchBruteForce(const std::string& file, const Scene& scene, int size) {
   expectHitsMatchBruteForce(file, scene, size, size);
 }
+// The same in two steps, for many runs on one scene: brute force's primary
+// hits on the scene's own view (t in the file's units), computed once, and a
+// hit buffer against them.
+std::vector<Hit> bruteForceHits(const Scene& scene, int width, int height);
+void expectHitsMatch(const std::string& file, const std::vector<Hit>& expected, int width, int height,
+                     double minFoundFraction = 0.1, int allowedMismatches = 0);
 
 }  // namespace passtrace::test

@@ -7,7 +7,12 @@
 #include <filesystem>
 #include <system_error>
 
+#include "scenes/scene_registry.h"
+
 namespace passtrace::test {
+
+inline constexpr const char* kRealScenesAbsent =
+    "the real scenes (../shared/scenes/real or $PASSTRACE_SCENES_DIR) are absent";
 
 inline std::filesystem::path realScenesDir() {
   namespace fs = std::filesystem;
@@ -15,6 +20,13 @@ inline std::filesystem::path realScenesDir() {
   if (const char* dir = std::getenv("PASSTRACE_SCENES_DIR"); dir && fs::is_directory(dir, ec)) return dir;
   const fs::path beside = (fs::path(PASSTRACE_TEST_DATA) / ".." / ".." / ".." / "shared" / "scenes" / "real").lexically_normal();
   return fs::is_directory(beside, ec) ? beside : fs::path();
+}
+
+// Scene options that find the real scenes in `dir`.
+inline SceneOptions realSceneOptions(const std::filesystem::path& dir) {
+  SceneOptions options;
+  options.realScenesDir = dir;
+  return options;
 }
 
 }  // namespace passtrace::test

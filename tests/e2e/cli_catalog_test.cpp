@@ -4,6 +4,7 @@
 // once as a warning (silenced by --quiet), for every row of the registry.
 
 #include <algorithm>
+#include <filesystem>
 #include <set>
 #include <string>
 #include <utility>
@@ -30,7 +31,9 @@ std::set<std::string> keysOf(const nlohmann::json& object) {
 }
 
 TEST_F(Cli, ListJsonFollowsTheContractAndTheRegistry) {
-  const RunResult r = run("--list --json");
+  // An empty --scenes-dir: the real scenes, found or not beside the checkout, are not listed.
+  std::filesystem::create_directory(path("no-scenes"));
+  const RunResult r = run("--list --json --scenes-dir " + path("no-scenes"));
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.err, "");
   const nlohmann::json j = nlohmann::json::parse(r.out);
@@ -62,7 +65,7 @@ TEST_F(Cli, ListJsonFollowsTheContractAndTheRegistry) {
     EXPECT_EQ(a["description"], s.description);
   }
 
-  // The built-in scenes by name and thesis number, and the procedural one.
+  // The built-in scenes by name and thesis number, and the procedural one; no real scene.
   const nlohmann::json& scenes = j["scenes"];
   ASSERT_TRUE(scenes.is_array());
   for (const nlohmann::json& scene : scenes) {

@@ -19,18 +19,9 @@
 namespace passtrace {
 namespace {
 
+using test::litFraction;
 using test::RunResult;
 using LightsCli = test::CliTest;
-
-// The fraction of pixels with some channel above 0.2 (the measure of a lit image).
-double litFraction(const std::string& exr) {
-  int width = 0, height = 0;
-  const std::vector<float> rgb = readImage(exr, width, height);
-  size_t lit = 0;
-  for (size_t p = 0; p < rgb.size(); p += 3)
-    lit += std::any_of(rgb.begin() + long(p), rgb.begin() + long(p) + 3, [](float c) { return c > 0.2f; }) ? 1 : 0;
-  return double(lit) / double(size_t(width) * size_t(height));
-}
 
 // A closed room [0,10]^3 (walls facing in) with a table-like box inside; no lights in the file.
 std::string writeRoom(const std::string& file) {
@@ -98,7 +89,7 @@ TEST_F(LightsCli, BadLightIsOneLineErrorWithNoOutput) {
 // The case: the Conference room seen from inside, default shading, -b 2.
 TEST_F(LightsCli, TheConferenceRoomSeenFromInsideIsLit) {
   const std::filesystem::path dir = test::realScenesDir();
-  if (dir.empty()) GTEST_SKIP() << "the real scenes (../shared/scenes/real or $PASSTRACE_SCENES_DIR) are absent";
+  if (dir.empty()) GTEST_SKIP() << test::kRealScenesAbsent;
   const std::string image = path("conference.exr");
   const RunResult r = run("-s " + (dir / "conference" / "conference.ply").string() +
                           " --eye 1500,450,500 --look-at 0,150,-300 -r 1 -a bvh8 -b 2 -w 64 -o " + image);

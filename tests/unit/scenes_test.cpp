@@ -388,7 +388,8 @@ TEST(SceneRegistry, LoadsCornell) {
 
 TEST(SceneRegistry, UnknownName) {
   EXPECT_EQ(errorOf([] { loadScene("foo"); }),
-            "unknown scene 'foo' (expected cows, robots, kitchen, bunny, cornell, spheres, 0-4 or a file path)");
+            "unknown scene 'foo' (expected cows, robots, kitchen, bunny, cornell, spheres, 0-4, conference, sibenik, "
+            "sponza, teapot, dragon or a file path)");
 }
 
 TEST(SceneRegistry, UnsupportedFormat) {
