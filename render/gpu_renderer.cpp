@@ -9,6 +9,7 @@
 #include "accel/ray_stream_layout.h"
 #include "render/scene_streams.h"
 #include "render/shading.h"
+#include "stream/active_elements.h"
 #include "stream/texel_address.h"
 
 namespace passtrace {
@@ -62,10 +63,12 @@ GpuRenderer::GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width,
   if (compact != Compaction::Off) compaction_ = std::make_unique<StreamCompaction>(rays_, kStateSurface);
 }
 
-double GpuRenderer::extraBytesPerPixel(const ShadingConfig& shading, Compaction compact) {
+double GpuRenderer::extraBytesPerPixel(const ShadingConfig& shading, Compaction compact, StreamStage stage) {
   double bytes = 0;
   if (shading.mode == ShadingMode::Whitted) bytes += sizeof(float) * kWhittedStackFloats * kWhittedStackSize;
   if (compact != Compaction::Off) bytes += StreamCompaction::bytesPerElement(kRaySurfaceCount);
+  if (stage == StreamStage::Compute)  // the rays' stream, and the compaction's when there is one
+    bytes += ActiveElements::bytesPerElement() * (compact != Compaction::Off ? 2 : 1);
   return bytes;
 }
 

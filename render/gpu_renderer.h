@@ -43,8 +43,10 @@ class GpuRenderer {
 
   // Bytes per pixel this renderer keeps beyond the ray stream the memory
   // check counts for every GL run (render/memory_check.h): the Whitted ray
-  // stacks and the compaction's second stream.
-  static double extraBytesPerPixel(const ShadingConfig& shading, Compaction compact);
+  // stacks, the compaction's second stream, and in the compute stage each
+  // stream's active-element lists (stream/active_elements.h).
+  static double extraBytesPerPixel(const ShadingConfig& shading, Compaction compact,
+                                   StreamStage stage = StreamStage::Fragment);
 
   // The scene's triangles moved (--frames with --dynamic, the same count):
   // re-uploads their shading data and the light; the kernels stay compiled.

@@ -69,7 +69,7 @@ fs::path numberedPath(const fs::path& path, int k) {
 
 // What the chosen renderer keeps per pixel beyond the memory check's base.
 double extraBytesPerPixel(const RunSettings& o) {
-  return o.renderer == RendererId::Gpu ? GpuRenderer::extraBytesPerPixel(o.shading, o.gpu.compact) : 0.0;
+  return o.renderer == RendererId::Gpu ? GpuRenderer::extraBytesPerPixel(o.shading, o.gpu.compact, o.gpu.stage) : 0.0;
 }
 
 void checkOutputs(const RunSettings& o) {

@@ -69,6 +69,15 @@ SCENE_DEFAULTS = {
     "kitchen": {"bounces": 2, "path": False, "grid": 1.3, "kd": (30, 33)},
     "bunny":   {"bounces": 2, "path": True,  "grid": 1.1, "kd": (30, 30)},
     "cornell": {"bounces": 2, "path": False, "grid": 0.6, "kd": (1, 1)},
+    # The seeds' real scenes (scenes/real_scenes.h; --scenes lists them, the
+    # modes do not): the interiors keep their one view from inside like Robots
+    # and Kitchen, the teapot and the dragon follow the camera path like the
+    # bunny; passtrace's own grid size and kd depth (0: 8 + 1.3 log2 N).
+    "conference": {"bounces": 2, "path": False, "grid": 1.0, "kd": (0, 0)},
+    "sibenik":    {"bounces": 2, "path": False, "grid": 1.0, "kd": (0, 0)},
+    "sponza":     {"bounces": 2, "path": False, "grid": 1.0, "kd": (0, 0)},
+    "teapot":     {"bounces": 2, "path": True,  "grid": 1.0, "kd": (0, 0)},
+    "dragon":     {"bounces": 2, "path": True,  "grid": 1.0, "kd": (0, 0)},
 }
 
 # Mode parameters. `angles` applies to the path scenes (Cows, Bunny). Structures
@@ -184,6 +193,70 @@ def bart_dir(arg):
 
 def bart_present(path):
     return (path / "robots").is_dir() and (path / "kitchen").is_dir()
+
+
+def claim_verdicts(lines):
+    """{claim: [verdict, ...]} from the Markdown tables of LINES that have a
+    `claim` and a `verdict` column (one verdict per row: per scene where the
+    table has a scene column)."""
+    found, header = {}, None
+    for line in lines:
+        if not line.startswith("|"):
+            header = None
+            continue
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if header is None:
+            header = cells
+            continue
+        if set(cells) <= {"---", ""} or "claim" not in header or "verdict" not in header:
+            continue
+        if len(cells) == len(header):
+            claim = cells[header.index("claim")]
+            found.setdefault(claim, []).append(cells[header.index("verdict")].strip("*").lower())
+    return found
+
+
+def verdict_summary(verdicts):
+    held = sum(v == "holds" for v in verdicts)
+    if held == len(verdicts):
+        return "holds"
+    return "does not hold" if held == 0 else f"holds in {held} of {len(verdicts)}"
+
+
+def merge_report(report, section, title):
+    """Splices SECTION's report (a section's REPORT.md, written into a folder
+    beside REPORT) into REPORT between markers naming the folder, replacing an
+    earlier merge of the same folder and keeping everything else: the rows of
+    a run on other scenes stay, and the new rows sit beside them. A table
+    sets each claim's verdict on the new scenes beside its verdict in the
+    rest of the report, and says where it changes with the scene."""
+    report, section = pathlib.Path(report), pathlib.Path(section)
+    folder = os.path.relpath(section.parent, report.parent)
+    begin, end = f"<!-- merged from {folder}/REPORT.md -->", f"<!-- end of {folder}/REPORT.md -->"
+    text = report.read_text() if report.exists() else ""
+    rest = text[:text.index(begin)] + text[text.index(end) + len(end):] if begin in text and end in text else text
+    body = []
+    for line in section.read_text().splitlines():
+        if line.startswith("#"):
+            line = "#" + line  # one level down: a section of the report
+        for media in ("plots/", "heatmaps/"):
+            line = line.replace(f"]({media}", f"]({folder}/{media}")
+        body.append(line)
+    before, after = claim_verdicts(rest.splitlines()), claim_verdicts(body)
+    rows = [f"| {claim} | {verdict_summary(before[claim]) if claim in before else '–'} | {verdict_summary(v)} | "
+            f"{'**yes**' if claim in before and verdict_summary(before[claim]) != verdict_summary(v) else 'no'} |"
+            for claim, v in after.items()]
+    revisited = ["### The verdicts revisited", "",
+                 "Each claim's verdict on these scenes beside its verdict on the scenes of the rest of this report "
+                 "(per scene where the claim is judged per scene):", "",
+                 "| claim | other scenes | these scenes | changes with the scene |", "|---|---|---|---|"] + rows + [""]
+    block = "\n".join([begin, f"## {title}", "", f"Merged from [{folder}/REPORT.md]({folder}/REPORT.md).", ""] +
+                      (revisited if rows else []) + body[1:] + [end])
+    if begin in text and end in text:
+        text = text[:text.index(begin)] + block + text[text.index(end) + len(end):]
+    else:
+        text = text.rstrip("\n") + "\n\n" + block + "\n"
+    write_atomically(report, text)
 
 
 class Plan:
@@ -357,7 +430,7 @@ def build_jobs(plan, runner, bart_ok):
     """[(kind, meta, args, record_path, extra_args, extra_files)] in execution order."""
     jobs, skipped_scenes = [], []
     for scene in plan.scenes:
-        if scene in BART_SCENES and not bart_ok:
+        if (scene in BART_SCENES and not bart_ok) or not passtrace_registry.scene_available(plan.registry, scene):
             skipped_scenes.append(scene)
             continue
         for renderer in ("gpu", "cpu", "embree"):
@@ -509,7 +582,11 @@ def main_section(args, argv, section):
     registry = passtrace_registry.load(binary)
     bart = bart_dir(args.bart_dir)
     command = shown_command(["python3", "scripts/bench.py"] + (argv if argv is not None else sys.argv[1:]))
-    return module.main(args, binary, registry, out, bart, bart_present(bart), sys.modules[__name__], command)
+    status = module.main(args, binary, registry, out, bart, bart_present(bart), sys.modules[__name__], command)
+    if args.merge_into:
+        merge_report(args.merge_into, out / "REPORT.md", args.merge_title or f"Runs in {out.name}")
+        log(f"bench: merged {shown_path(out / 'REPORT.md')} into {args.merge_into}")
+    return status
 
 
 def main(argv=None):
@@ -527,6 +604,11 @@ def main(argv=None):
                         help="the passtrace to run; its --list --json gives the structures")
     parser.add_argument("--out", help="output directory (default docs/bench for --quick, docs/bench-full for --full)")
     parser.add_argument("--bart-dir", help="BART scenes (default $PASSTRACE_BART_DIR, else ../shared/scenes/bart)")
+    parser.add_argument("--scenes-dir", help="the real scenes (default: passtrace's $PASSTRACE_SCENES_DIR, else "
+                        "../shared/scenes/real)")
+    parser.add_argument("--merge-into", help="seed sections: also splice the report into this REPORT.md as a "
+                        "section (e.g. the real scenes' runs into the seed's main report)")
+    parser.add_argument("--merge-title", help="the merged section's title")
     parser.add_argument("--scenes", help="comma-separated subset of " + ",".join(SCENES))
     parser.add_argument("--renderers", help="comma-separated subset of gpu,cpu,embree")
     parser.add_argument("--structures", help="comma-separated structure names to keep (e.g. kk-bvh,grid,embree); "
@@ -546,6 +628,8 @@ def main(argv=None):
                         "--dacrt: of the animation (default 10)")
     parser.add_argument("--dynamic-size", type=int, help="--papay/--dacrt: image side of the dynamic-scene runs")
     args = parser.parse_args(argv)
+    if args.scenes_dir:  # every passtrace this run starts finds them there
+        os.environ["PASSTRACE_SCENES_DIR"] = str(pathlib.Path(args.scenes_dir).resolve())
     if args.mode in SECTIONS:
         return main_section(args, argv, args.mode)
 
@@ -567,8 +651,9 @@ def main(argv=None):
     runner = Runner(binary, bart, out, plan.timeout, args.force)
     jobs, skipped_scenes = build_jobs(plan, runner, bart_ok)
     for scene in skipped_scenes:
-        log(f"bench: skipping {scene}: the BART scenes are not at {bart} "
-            f"(give --bart-dir or $PASSTRACE_BART_DIR)")
+        log(f"bench: skipping {scene}: " + (f"the BART scenes are not at {bart} (give --bart-dir or "
+            "$PASSTRACE_BART_DIR)" if scene in BART_SCENES else "passtrace did not find the real scenes (give "
+            "--scenes-dir or $PASSTRACE_SCENES_DIR)"))
 
     bench_cmd = shown_command(["python3", "scripts/bench.py"] + (argv if argv is not None else sys.argv[1:]))
     # SIGTERM stops like Ctrl-C: the report is still written from what finished.
@@ -646,6 +731,8 @@ def main(argv=None):
         "heatmaps": heats,
     }
     bench_report.write_all(out, results, modes, SCENE_DEFAULTS)
+    if args.merge_into:
+        merge_report(args.merge_into, out / "REPORT.md", args.merge_title or f"Runs in {out.name}")
     log(f"bench: {sum(r['status'] == 'ok' for r in runs)} ok, {sum(r['status'] == 'error' for r in runs)} failed, "
         f"{sum(r['status'] == 'pending' for r in runs)} not run; {fmt_s(elapsed)} elapsed; "
         f"report: {out / 'REPORT.md'}")

@@ -33,6 +33,7 @@ import statistics
 
 from report_tables import num, md_table, result, field, verdict
 from bench_report import write_atomically
+from passtrace_registry import scene_available
 
 # The seed's traversal names, and passtrace's structure and stack size for each.
 TRAVERSALS = [
@@ -55,6 +56,11 @@ SCENES = [
     ("cornell", ["-s", "cornell"]),
     ("spheres-1M", ["-s", "spheres", "--triangles", "1000000"]),
     ("spheres-10M", ["-s", "spheres", "--triangles", "10000000"]),
+    # The seed's own scenes (scenes/real_scenes.h): Sibenik exactly the seed's,
+    # Conference another tessellation, Sponza Dabrovic's original, not Crytek's.
+    ("sibenik", ["-s", "sibenik"]),
+    ("conference", ["-s", "conference"]),
+    ("sponza", ["-s", "sponza"]),
 ]
 BART = {"robots", "kitchen"}
 
@@ -68,6 +74,9 @@ DYNAMIC_SCENES = [
     ("dynamic.gltf", ["-s", str(DYNAMIC_GLTF)], 30),
     ("robots", ["-s", "robots"], 30),
 ]
+# Papay's Sibenik1/2/3 (scripts/dynamic_sibenik.py): made from the real
+# Sibenik when `sibenik` is among the scenes and found, 30 frames each.
+SIBENIK_DYNAMIC = [1, 2, 3]
 STRATEGIES = ["rebuild", "two-trees", "merge"]
 DYNAMIC_STRUCTURE = {"cpu": "kd-tree", "gpu": "kd-pushdown-shortstack"}
 
@@ -91,6 +100,21 @@ SEED_STEPS = {  # Stack / Restart / PushDown / PushDownSS4
     "SanMiguel": [152.16, 530.26, 484.37, 160.04], "Sibenik": [96.44, 312.91, 260.05, 100.86],
     "Sponza": [150.15, 530.52, 489.74, 159.63], "Street": [67.38, 212.27, 169.92, 69.40],
 }
+# Tables D.47-D.52 (Sibenik with 1, 2, 3 moving objects): per strategy, T_B,S
+# (static build, ms), T_B,D (per-frame build or merge, ms), T_TP (GPU upload,
+# ms; None on the CPU) and T_F (s per frame). single = rebuild everything,
+# double = two trees.
+SEED_DYNAMIC = {
+    "Sibenik1": {("cpu", "rebuild"): (0.01, 2097.86, None, 2.21), ("cpu", "two-trees"): (1733.11, 127.81, None, 0.16),
+                 ("cpu", "merge"): (529.51, 1544.07, None, 1.61), ("gpu", "rebuild"): (0.00, 113.84, 30.19, 0.15),
+                 ("gpu", "two-trees"): (92.19, 103.33, 5.05, 0.14)},
+    "Sibenik2": {("cpu", "rebuild"): (0.00, 2131.95, None, 2.24), ("cpu", "two-trees"): (1714.91, 230.50, None, 0.26),
+                 ("cpu", "merge"): (535.40, 1732.95, None, 1.82), ("gpu", "rebuild"): (0.00, 123.39, 31.07, 0.16),
+                 ("gpu", "two-trees"): (92.22, 106.80, 6.67, 0.14)},
+    "Sibenik3": {("cpu", "rebuild"): (0.00, 2136.12, None, 2.24), ("cpu", "two-trees"): (1743.84, 351.98, None, 0.40),
+                 ("cpu", "merge"): (533.34, 1889.51, None, 1.99), ("gpu", "rebuild"): (0.00, 127.93, 31.04, 0.17),
+                 ("gpu", "two-trees"): (91.90, 99.16, 8.29, 0.14)},
+}
 SEED_BUILD_MS = {  # CPU exact / CPU binned / GPU (Ryzen 5 5600, one thread)
     "Conference": (2722.47, 1945.62, 129.24), "Sibenik": (2180.09, 2131.99, 128.53),
     "Sponza": (8221.02, 6690.59, 184.01), "Buddha": (8756.46, 15092.81, 342.71),
@@ -112,15 +136,16 @@ def seed_ratio_range(num, den):
 class Plan:
     """The runs of the three experiments: [(kind, meta, args, key)]."""
 
-    def __init__(self, size, repeats, registry, scenes, bart_ok, frames=None, dyn_size=None):
-        """Dynamic runs first and the 10M scene last, so that a run cut short still covers every experiment."""
+    def __init__(self, size, repeats, registry, scenes, bart_ok, frames=None, dyn_size=None, more_dynamic=()):
+        """Dynamic runs first and the 10M scene last, so that a run cut short still covers every experiment.
+        more_dynamic: (label, scene arguments, frames) of generated scenes, run like DYNAMIC_SCENES."""
         self.size, self.repeats = size, repeats
         self.dyn_size = dyn_size or max(32, size // 2)
         known = {r["name"]: r["renderers"] for r in registry["accelerators"]}
         self.missing = sorted({s for _, s, _ in TRAVERSALS if s not in known})
         self.jobs, self.skipped = [], []
-        for label, scene_args, n in DYNAMIC_SCENES:
-            if label not in scenes and label != "dynamic.gltf":
+        for label, scene_args, n in DYNAMIC_SCENES + list(more_dynamic):
+            if label not in scenes and label != "dynamic.gltf" and not label.startswith("sibenik"):
                 continue
             if label in BART and not bart_ok:
                 continue
@@ -137,7 +162,7 @@ class Plan:
         for label, scene_args in SCENES:
             if label not in scenes:
                 continue
-            if label in BART and not bart_ok:
+            if (label in BART and not bart_ok) or not scene_available(registry, label):
                 self.skipped.append(label)
                 continue
             big = label == "spheres-10M"
@@ -318,6 +343,14 @@ def dynamic_section(records, plots):
                      num(r.get("static_build_ms"), 1), num(build, 2), num(trace, 2), num(total, 2)])
     out += [md_table(["scene", "renderer", "structure", "strategy", "frames", "static build ms",
                       "build/merge ms", "trace ms", "T_F ms"], rows), ""]
+    if any(s.startswith("sibenik") for s, _, _ in by):
+        seed_rows = [[scene, renderer, strategy, num(v[0], 2), num(v[1], 2), num(v[2], 2) if v[2] is not None else "–",
+                      num(v[3] * 1000, 0)]
+                     for scene, table in SEED_DYNAMIC.items() for (renderer, strategy), v in table.items()]
+        out += ["The seed's Sibenik1/2/3 (Tables D.47–D.52; RTX 4080 and a Ryzen 5 5600, 3840×2160, its own "
+                "moving objects of 6,658 triangles each; here spheres of 6,656 flying down the nave, "
+                "scripts/dynamic_sibenik.py; the seed's GPU did not merge):", "",
+                md_table(["scene", "renderer", "strategy", "T_B,S ms", "T_B,D ms", "T_TP ms", "T_F ms"], seed_rows), ""]
     out += [f"![T_F per frame]({p})" for p in plots] + [""]
     never, halves = [], []
     for (s, renderer, strategy), total in tf.items():
@@ -407,7 +440,8 @@ def plot_traversals(out_dir, records, scenes):
 
 
 def write_report(out_dir, results, records):
-    scenes = [s for s, _ in SCENES] + [s for s, _, _ in DYNAMIC_SCENES if s not in dict(SCENES)]
+    scenes = ([s for s, _ in SCENES] + [s for s, _, _ in DYNAMIC_SCENES if s not in dict(SCENES)] +
+              [f"sibenik{k}" for k in SIBENIK_DYNAMIC])
     t_out, t_claims = traversal_section(records, scenes)
     b_out, b_claims = build_section(records, scenes)
     d_out, d_claims = dynamic_section(records, plot_dynamic(out_dir, records))
@@ -445,8 +479,14 @@ def main(args, binary, registry, out, bart, bart_ok, bench, command):
     unknown = [s for s in scenes if s not in dict(SCENES)]
     if unknown:
         raise SystemExit(f"bench --papay: unknown scene {unknown[0]!r} (expected {', '.join(dict(SCENES))})")
+    more_dynamic = []
+    if "sibenik" in scenes and scene_available(registry, "sibenik"):
+        import dynamic_sibenik
+        for k in SIBENIK_DYNAMIC:
+            path = dynamic_sibenik.make(binary, k, out / "scenes")
+            more_dynamic.append((f"sibenik{k}", ["-s", str(path)] + dynamic_sibenik.VIEW_ARGS, 30))
     plan = Plan(args.size or 256, args.repeats or 3, registry, scenes, bart_ok,
-                frames=args.frames, dyn_size=args.dynamic_size)
+                frames=args.frames, dyn_size=args.dynamic_size, more_dynamic=more_dynamic)
     runner = bench.Runner(binary, bart, out, args.timeout or 900, args.force)
     records, wall_s = bench.run_jobs(plan.jobs, runner, args.report_only, "--papay")
     parameters = {"size": plan.size, "repeats": plan.repeats, "dynamic_size": plan.dyn_size, "scenes": scenes}

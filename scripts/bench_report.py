@@ -11,8 +11,11 @@ import json
 import os
 import pathlib
 
-SCENES = ["cows", "robots", "kitchen", "bunny", "cornell"]
-SCENE_TITLES = {"cows": "Cows", "robots": "Robots", "kitchen": "Kitchen", "bunny": "Bunny", "cornell": "Cornell"}
+SCENES = ["cows", "robots", "kitchen", "bunny", "cornell", "conference", "sibenik", "sponza", "teapot", "dragon"]
+# The thesis's scenes by its names; the seeds' real scenes as passtrace names them.
+SCENE_TITLES = {"cows": "Cows", "robots": "Robots", "kitchen": "Kitchen", "bunny": "Bunny", "cornell": "Cornell",
+                "conference": "conference", "sibenik": "sibenik", "sponza": "sponza", "teapot": "teapot",
+                "dragon": "dragon"}
 # Thesis Table 1 (ms per frame, GeForce 6800 Ultra, 512x512) and Table 3 (floats
 # per triangle, triangles excluded), in the thesis's row order.
 THESIS_ROWS = [("grid", "Uniform grid"), ("kd-restart", "Kd-tree (Restart)"), ("kd-backtrack", "Kd-tree (Backtrack)"),
@@ -157,7 +160,7 @@ def plot_scene(out, scene, by, structures, params):
     ps = params["per_scene"][scene]
     size = params["size"]
     title = (f"{SCENE_TITLES[scene]}: ms per frame, {size}x{size}, -b {ps['bounces']}, min of -m {params['repeats']}"
-             f" (cf. thesis figure {THESIS_FIGURES[scene]})")
+             + (f" (cf. thesis figure {THESIS_FIGURES[scene]})" if scene in THESIS_FIGURES else ""))
     path_scene = ps["angles"] > 1
     name = f"plots/{scene}.png"
     (out / "plots").mkdir(exist_ok=True)
@@ -242,8 +245,10 @@ def write_report(out, results, modes, scene_defaults, plots):
         L.append("- **Interrupted:** this report covers only the runs that finished; rerun the same command to "
                  "complete it (finished runs are skipped).")
     for scene in results.get("skipped_scenes", []):
-        L.append(f"- **{SCENE_TITLES[scene]} skipped:** the BART scenes are not at `{results['bart_dir']}` "
-                 "(`--bart-dir` or `$PASSTRACE_BART_DIR`).")
+        L.append(f"- **{SCENE_TITLES[scene]} skipped:** " +
+                 (f"the BART scenes are not at `{results['bart_dir']}` (`--bart-dir` or `$PASSTRACE_BART_DIR`)."
+                  if scene in ("robots", "kitchen") else
+                  "passtrace did not find the real scenes (`--scenes-dir` or `$PASSTRACE_SCENES_DIR`)."))
     L.append("")
     L.append("> Timings on shared machines vary by ±20–50 % from run to run. Compare ratios taken within one run "
              "(structure against structure, renderer against Embree), not absolute numbers across runs or "
@@ -301,12 +306,12 @@ def write_report(out, results, modes, scene_defaults, plots):
         row = [title]
         for s in scenes:
             run = by.get((s, "gpu", structure))
-            thesis = THESIS_MS[structure][s]
+            thesis = THESIS_MS[structure].get(s)  # none on the real scenes
             if ok(run):
                 ms = run["result"]["frame_ms"] * pixel_scale(run)
-                row.append(f"**{num(ms)}** / {thesis} ({ms / thesis:.2f})")
+                row.append(f"**{num(ms)}** / {thesis} ({ms / thesis:.2f})" if thesis else f"**{num(ms)}** / –")
             else:
-                row.append(f"{NA} / {thesis}")
+                row.append(f"{NA} / {thesis or '–'}")
         rows.append(row)
     L.append(md_table(["structure"] + [SCENE_TITLES[s] for s in scenes], rows))
     L.append("")
@@ -321,7 +326,7 @@ def write_report(out, results, modes, scene_defaults, plots):
         row = [title]
         for s in scenes:
             run = by.get((s, "gpu", structure))
-            thesis = THESIS_FLOATS[structure][s]
+            thesis = THESIS_FLOATS[structure].get(s, "–")
             if ok(run) and run["result"].get("accel_floats_per_triangle") is not None:
                 row.append(f"**{num(run['result']['accel_floats_per_triangle'])}** / {thesis}")
             else:

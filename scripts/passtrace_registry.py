@@ -27,6 +27,17 @@ def load(binary):
     return registry
 
 
+# The real benchmark scenes (scenes/real_scenes.h): passtrace finds them itself
+# (--scenes-dir, $PASSTRACE_SCENES_DIR, ../shared/scenes/real) and lists in
+# `scenes` those it found; a benchmark skips the others.
+REAL_SCENES = ["conference", "sibenik", "sponza", "teapot", "dragon"]
+
+
+def scene_available(registry, label):
+    """False only for a real scene the binary did not find."""
+    return label not in REAL_SCENES or any(s["name"] == label for s in registry.get("scenes", []))
+
+
 def numbers(registry, renderer):
     """{name: thesis number} of the structures numbered on `renderer`.
 

@@ -23,6 +23,10 @@ class ActiveElements {
   ActiveElements(const ActiveElements&) = delete;
   ActiveElements& operator=(const ActiveElements&) = delete;
 
+  // The memory per element: the two index lists (the cull reads one and
+  // writes the other). A --dynamic two-trees save adds one more list.
+  static constexpr double bytesPerElement() { return 2.0 * sizeof(uint32_t); }
+
   int width() const { return width_; }
   int height() const { return height_; }
 

@@ -20,6 +20,15 @@ TEST(MemoryCheck, GpuRendererCountsItsWhittedStacksAndCompactionStream) {
   EXPECT_EQ(GpuRenderer::extraBytesPerPixel(whitted, Compaction::Always), 908.0);
 }
 
+// The compute stage keeps two 4-byte index lists per stream element: the rays'
+// stream's, and the compaction stream's when compaction is on.
+TEST(MemoryCheck, TheComputeStageCountsItsActiveElementLists) {
+  ShadingConfig thesis;
+  EXPECT_EQ(GpuRenderer::extraBytesPerPixel(thesis, Compaction::Off, StreamStage::Compute), 8.0);
+  EXPECT_EQ(GpuRenderer::extraBytesPerPixel(thesis, Compaction::On, StreamStage::Compute), 140.0 + 16.0);
+  EXPECT_EQ(GpuRenderer::extraBytesPerPixel(thesis, Compaction::Off, StreamStage::Fragment), 0.0);
+}
+
 TEST(MemoryCheck, ExtraBytesPerPixelGrowTheEstimateWithItsMargin) {
   const Structure& kk = *findStructure("kk-bvh");
   const uint64_t pixels = 1920 * 1080;
