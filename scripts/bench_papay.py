@@ -144,9 +144,9 @@ class Plan:
         known = {r["name"]: r["renderers"] for r in registry["accelerators"]}
         self.missing = sorted({s for _, s, _ in TRAVERSALS if s not in known})
         self.jobs, self.skipped = [], []
-        for label, scene_args, n in DYNAMIC_SCENES + list(more_dynamic):
-            if label not in scenes and label != "dynamic.gltf" and not label.startswith("sibenik"):
-                continue
+        # dynamic.gltf always runs (it is built in); BART Robots when chosen; the generated ones when made.
+        chosen = [d for d in DYNAMIC_SCENES if d[0] in scenes or d[0] == "dynamic.gltf"] + list(more_dynamic)
+        for label, scene_args, n in chosen:
             if label in BART and not bart_ok:
                 continue
             for renderer, rid in (("cpu", "1"), ("gpu", "2")):
