@@ -29,6 +29,18 @@ std::optional<double> nodeTestsPerRay(const RunReport& r) {
   return std::max(0.0, r.stepsPerRay - r.triangleTestsPerRay);
 }
 
+nlohmann::json toJson(const AccelStats& s) {
+  return {{"accelerator", s.name},
+          {"build_ms", s.buildMs},
+          {"accel_floats_per_triangle", s.floatsPerTriangle},
+          {"accel_nodes", s.nodes},
+          {"accel_leaves", s.leaves},
+          {"accel_depth", s.depth},
+          {"accel_references", s.references},
+          // The structure's cost and memory (0: not computed for this structure).
+          {"structure", {{"sah_cost", s.sahCost}, {"structure_bytes", s.structureBytes}}}};
+}
+
 nlohmann::json toJson(const RunReport& r) {
   nlohmann::json frames = nlohmann::json::array();
   for (const FrameReport& f : r.frames)
@@ -40,7 +52,6 @@ nlohmann::json toJson(const RunReport& r) {
       {"triangles", r.triangles},
       {"renderer", r.renderer},
       {"renderer_id", r.rendererId},
-      {"accelerator", r.structure.name},
       {"accelerator_id", orNull(r.structureNumber)},
       {"triangle_test", orNull(r.triangleTest)},
       {"width", r.width},
@@ -49,7 +60,6 @@ nlohmann::json toJson(const RunReport& r) {
       {"repeats", r.repeats},
       {"angles", r.angles},
       {"rays", r.rays},
-      {"build_ms", r.structure.buildMs},
       {"frame_ms", r.frameMs},
       {"mrays_per_s", r.mraysPerS},
       {"passes", r.passes},
@@ -57,13 +67,6 @@ nlohmann::json toJson(const RunReport& r) {
       {"triangle_tests_per_ray", r.triangleTestsPerRay},
       {"max_steps_per_ray", r.maxStepsPerRay},
       {"max_triangle_tests_per_ray", r.maxTriangleTestsPerRay},
-      {"accel_floats_per_triangle", r.structure.floatsPerTriangle},
-      {"accel_nodes", r.structure.nodes},
-      {"accel_leaves", r.structure.leaves},
-      {"accel_depth", r.structure.depth},
-      {"accel_references", r.structure.references},
-      // The structure's cost and memory (0: not computed for this structure).
-      {"structure", {{"sah_cost", r.structure.sahCost}, {"structure_bytes", r.structure.structureBytes}}},
       {"steps", r.steps},
       {"triangle_tests", r.triangleTests},
       {"gl_renderer", orNull(r.glRenderer)},
@@ -95,6 +98,7 @@ nlohmann::json toJson(const RunReport& r) {
     j["dacrt"] = {{"ray_box_tests", r.dacrt->rayBox},           {"cone_box_tests", r.dacrt->coneBox},
                   {"triangle_box_tests", r.dacrt->triangleBox}, {"ray_triangle_tests", r.dacrt->rayTriangle},
                   {"nodes", r.dacrt->nodes}};
+  j.update(toJson(r.structure));
   // Node (box) tests per ray for the roofline (scripts/bench_speed.py); null where not counted.
   j["node_tests_per_ray"] = orNull(nodeTestsPerRay(r));
   return j;

@@ -72,9 +72,16 @@ struct RunReport {
   std::optional<std::string> stage;  // --stage: fragment or compute (-r 2 only; null elsewhere)
   std::string compact = "off";     // --compact: off, on or always (-r 2 only; off elsewhere)
   std::optional<ConeReport> cone;  // --cone: the JSON's "cone" object
+  // The picture -o writes (the first angle's, or a sequence's first frame):
+  // width*height*3 floats, row 0 the top row. Not in the JSON; empty for
+  // --cone and --export runs, which render no image.
+  std::vector<float> image;
 };
 
 nlohmann::json toJson(const RunReport& report);
+// The report's keys that describe the structure (accelerator, build_ms,
+// accel_*, structure): also the Python module's Accelerator.stats().
+nlohmann::json toJson(const AccelStats& stats);
 // Node tests per ray (the roofline's box tests; Structure::cpuStepsVisitNodes
 // says how steps read); null for Embree, which counts nothing, and the preview.
 std::optional<double> nodeTestsPerRay(const RunReport& report);

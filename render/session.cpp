@@ -290,6 +290,7 @@ RunReport renderSequence(const RunSettings& o, Progress& progress) {
     }
     const fs::path image = sequencePath(pattern, f);
     outputs.write(image, encodeImage(image, best.width, best.height, best.rgb));
+    if (f == 0) report.image = best.rgb;
     if (!o.hits.empty()) {
       // Hit distances in the file's units: 2^-k undoes the rescaling exactly.
       for (HitRecord& h : hits) h.t = std::ldexp(h.t, -scene.scaleExponent);
@@ -446,6 +447,7 @@ RunReport runSession(const RunSettings& o, Progress& progress) {
     outputs.write(o.heatmap, encodeImage(o.heatmap, first.width, first.height, heatmapRgb(first.steps)));
   if (!o.json.empty()) outputs.write(o.json, toJson(report).dump(2) + "\n");
   outputs.commitAll();
+  report.image = std::move(first.rgb);
   return report;
 }
 

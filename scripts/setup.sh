@@ -1,17 +1,20 @@
 #!/usr/bin/env bash
 # Sets passtrace up on a Debian 12 machine: installs the Debian packages it
 # needs (only those missing, so running it again is cheap), then configures
-# build/ and builds the program (build/passtrace) and its kernels — or, with
-# --tests, everything: the test binaries and measurement tools too.
+# build/ and builds the program (build/passtrace) and its kernels — with
+# --python also the Python package (build/python/passtrace), with --tests
+# everything: the package, the test binaries and measurement tools too.
 #   bash scripts/setup.sh            the program: the README's first command
+#   bash scripts/setup.sh --python   the program and the Python package (PYTHONPATH=build/python)
 #   bash scripts/setup.sh --tests    everything: the README's second command
 set -euo pipefail
 cd "$(dirname "$0")/.."
 target=(--target passtrace)
 case "${1:-}" in
   "") ;;
+  --python) target=(--target passtrace _passtrace) ;;
   --tests) target=() ;;
-  *) echo "setup: unknown argument '$1' (expected nothing or --tests)" >&2; exit 2 ;;
+  *) echo "setup: unknown argument '$1' (expected nothing, --python or --tests)" >&2; exit 2 ;;
 esac
 
 packages=(
@@ -27,6 +30,8 @@ packages=(
   glmark2-data                                  # the Stanford bunny (bunny.obj)
   libembree-dev                                 # Intel Embree 3, the CPU baseline (-r 3; optional)
   python3 python3-matplotlib                    # the benchmark report and its plots
+  pybind11-dev python3-dev python3-numpy        # the Python package (python/; optional)
+  python3-pytest                                # its tests (optional)
 )
 missing=()
 for p in "${packages[@]}"; do

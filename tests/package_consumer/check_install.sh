@@ -25,4 +25,17 @@ for f in bin/passtrace include/passtrace/accel/kd/kd_tree.h include/passtrace/gl
          include/passtrace/passtrace_version.h share/passtrace/kernels_glsl/kd/kd_traverse.frag; do
   [ -e "$work/prefix/$f" ] || { echo "check_install: $f is not installed" >&2; exit 1; }
 done
+# The Python package, where the build has it: imported from the prefix alone.
+if [ -n "${PASSTRACE_CHECK_PYTHON:-}" ]; then
+  site="$work/prefix/$PASSTRACE_PYTHON_SITE"
+  got="$(cd "$work" && PYTHONPATH="$site" "$PASSTRACE_CHECK_PYTHON" -c '
+import sys, passtrace
+assert passtrace.__file__.startswith(sys.argv[1]), passtrace.__file__
+scene = passtrace.load_scene("cornell")
+origins, directions = passtrace.camera_rays(scene, 8, 8)
+hits = passtrace.build(scene, "bvh8").intersect(origins, directions)
+print(passtrace.__version__, int((hits["id"] != 4294967295).sum()))' "$site")"
+  echo "python: $got"
+  [ "$got" = "$version 64" ] || { echo "check_install: the installed Python package answered '$got'" >&2; exit 1; }
+fi
 echo "check_install: ok"
