@@ -32,6 +32,11 @@ double litFraction(const std::string& imageFile) {
   return width * height == 0 ? 0.0 : double(lit) / double(size_t(width) * size_t(height));
 }
 
+std::string passtraceBinary() {
+  const char* chosen = std::getenv("PASSTRACE_TEST_BINARY");
+  return chosen && *chosen ? chosen : PASSTRACE_BINARY;
+}
+
 void CliTest::SetUp() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   std::string name = std::string(info->test_suite_name()) + "_" + info->name();
@@ -44,7 +49,7 @@ void CliTest::SetUp() {
 void CliTest::TearDown() { fs::remove_all(dir_); }
 
 RunResult CliTest::run(const std::string& args, const std::string& env) {
-  const std::string cmd = env + " " + PASSTRACE_BINARY + " " + args + " > " + (dir_ / "stdout").string() + " 2> " +
+  const std::string cmd = env + " " + passtraceBinary() + " " + args + " > " + (dir_ / "stdout").string() + " 2> " +
                           (dir_ / "stderr").string() + " < /dev/null";
   const int raw = std::system(cmd.c_str());
   return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(dir_ / "stdout"), slurp(dir_ / "stderr")};

@@ -20,6 +20,11 @@ struct RunResult {
 
 std::string slurp(const std::filesystem::path& p);
 
+// The passtrace program the tests run: $PASSTRACE_TEST_BINARY when set (the
+// sanitized run points this build's tests at its instrumented program,
+// scripts/sanitize.sh), else the one built beside them (PASSTRACE_BINARY).
+std::string passtraceBinary();
+
 // The fraction of an image's pixels with some channel above 0.2: how much of
 // a render is lit (issue 34's measure of a readable image).
 double litFraction(const std::string& imageFile);

@@ -131,7 +131,7 @@ TEST_F(OutputTargets, AFullTmpfsLeavesNothing) {
   const fs::path mount = dir_ / "fs";
   fs::create_directory(mount);
   const std::string inside = "mount -t tmpfs -o size=" + std::to_string(size) + " tmpfs " + mount.string() +
-                             " 2>/dev/null || exit 77; " + PASSTRACE_BINARY + " " + expand(args, mount) + " > " +
+                             " 2>/dev/null || exit 77; " + test::passtraceBinary() + " " + expand(args, mount) + " > " +
                              path("stdout") + " 2> " + path("stderr") + " < /dev/null; echo $? > " +
                              path("status") + "; ls -A " + mount.string() + " > " + path("listing");
   int raw = -1;
@@ -161,7 +161,7 @@ TEST_F(OutputTargets, DevicesAndPipesAreWrittenInto) {
   EXPECT_TRUE(fs::is_regular_file(path("img.png")));
   EXPECT_TRUE(fs::is_character_file("/dev/null")) << "the device was replaced";
   // --json to a pipe: the report comes through it whole.
-  const std::string cmd = std::string(PASSTRACE_BINARY) + " -q -s cornell -r 1 -w 16 -b 1 --json /dev/stdout | cat > " +
+  const std::string cmd = test::passtraceBinary() + " -q -s cornell -r 1 -w 16 -b 1 --json /dev/stdout | cat > " +
                           path("piped.json");
   ASSERT_EQ(std::system(cmd.c_str()), 0);
   EXPECT_EQ(nlohmann::json::parse(slurp(path("piped.json")))["scene"], "cornell");

@@ -87,7 +87,7 @@ TEST_F(RealScenesCli, NotFoundIsOneLineErrorNamingWhereItLooked) {
   expectOneLineError(r, "$PASSTRACE_SCENES_DIR");
   // With nothing set and no ../shared beside the current directory or the
   // executable: the binary copied into the test's directory, run from there.
-  fs::copy_file(PASSTRACE_BINARY, path("passtrace"));
+  fs::copy_file(test::passtraceBinary(), path("passtrace"));
   const std::string alone = "cd " + dir_.string() + " && env -u PASSTRACE_SCENES_DIR ./passtrace -s dragon" + outs +
                             " >" + path("out.txt") + " 2>" + path("err.txt");
   const int status = std::system(alone.c_str());

@@ -1,7 +1,8 @@
-// --dynamic on BART Robots (62,490 of its 71,708 triangles move): 30 frames
-// with each strategy on the CPU and the GPU stream renderer, every frame's
-// --hits buffer equal to brute force on that frame's geometry (computed once
-// per frame and held against all six runs). Skipped without ../shared.
+// --dynamic on BART Robots (62,490 of its 71,708 triangles move): 10 frames
+// (30 with PASSTRACE_FULL_MATRIX=1: 136 s of one core) with each strategy on
+// the CPU and the GPU stream renderer, every frame's --hits buffer equal to
+// brute force on that frame's geometry (computed once per frame and held
+// against all six runs). Skipped without ../shared.
 
 #include <cmath>
 #include <cstdio>
@@ -19,6 +20,7 @@
 #include "scenes/scene_registry.h"
 #include "tests/bart_dir.h"
 #include "tests/cli_support.h"
+#include "tests/registry_helpers.h"
 
 namespace passtrace {
 namespace {
@@ -27,7 +29,8 @@ namespace fs = std::filesystem;
 using test::slurp;
 using Cli = test::CliTest;
 
-constexpr int kFrames = 30, kSize = 24;
+constexpr int kSize = 24;
+int frameCount() { return testing_registry::fullMatrix() ? 30 : 10; }
 
 std::string numbered(const std::string& stem, int k) {
   char name[64];
@@ -80,22 +83,23 @@ TEST_F(Cli, DynamicStrategiesOverBartRobots) {
   if (bart.empty() || !fs::exists(bart / "robots")) GTEST_SKIP() << "BART scenes not found; set PASSTRACE_BART_DIR";
   const std::vector<std::pair<int, std::string>> runs = {
       {1, "rebuild"}, {1, "two-trees"}, {1, "merge"}, {2, "rebuild"}, {2, "two-trees"}, {2, "merge"}};
+  const int frames = frameCount();
   std::vector<float> times;
   for (const auto& [renderer, strategy] : runs) {
     const std::string stem = stemOf(renderer, strategy);
     const auto r = run("-s robots --bart-dir " + bart.string() + " -r " + std::to_string(renderer) +
-                       " -a kd-restart -w " + std::to_string(kSize) + " -b 1 --frames " + std::to_string(kFrames) +
+                       " -a kd-restart -w " + std::to_string(kSize) + " -b 1 --frames " + std::to_string(frames) +
                        " --dynamic " + strategy + " -o " + path("r.png") + " --hits " + path(stem + ".exr") +
                        " --json " + path(stem + ".json"));
     ASSERT_EQ(r.status, 0) << r.err;
     const nlohmann::json j = nlohmann::json::parse(slurp(path(stem + ".json")));
-    ASSERT_EQ(j["sequence"].size(), size_t(kFrames));
+    ASSERT_EQ(j["sequence"].size(), size_t(frames));
     if (times.empty())
       for (const auto& f : j["sequence"]) times.push_back(f["time"].get<float>());
   }
   SceneOptions options;
   options.bartDir = bart;
-  for (int k = 0; k < kFrames; ++k) {
+  for (int k = 0; k < frames; ++k) {
     options.time = times[size_t(k)];
     const std::vector<Hit> expected = bruteHits(loadScene("robots", options));
     for (const auto& [renderer, strategy] : runs)

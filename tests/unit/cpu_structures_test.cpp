@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 #include <random>
 #include <string>
 #include <vector>
@@ -88,15 +89,16 @@ struct Agreement {
 // checked for presence alone, and it computes t by its own formula, so ties
 // are judged at 1e-4 relative instead of 1e-6.
 Agreement compareWithBruteForce(const Structure& s, const CpuAccelerator& accel, std::span<const Triangle> tris,
-                                std::span<const Ray> rays) {
+                                std::span<const Ray> rays, std::span<const Hit> closest) {
   const bool embree = s.runsOn(RendererId::Embree);
   const float tieTolerance = embree ? 1e-4f : 1e-6f;
   Agreement a;
-  for (const Ray& ray : rays)
+  for (size_t i = 0; i < rays.size(); ++i)
     for (const bool anyHit : {false, true}) {
+      const Ray& ray = rays[i];
       ++a.rays;
       const Hit h = accel.intersect(ray, anyHit, nullptr);
-      const Hit b = intersectBruteForce(tris, ray, anyHit);
+      const Hit& b = closest[i];  // an any hit exists exactly where a closest one does
       if (h.found() != b.found()) {
         ++a.foundMismatch;
         continue;
@@ -157,20 +159,37 @@ const std::vector<CpuCase>& cpuCases() {
 }
 
 // One case on one mesh: every ray's hit against brute force.
+// A mesh's rays and brute force's closest hits on them, made once per process
+// (keyed by the mesh and whether the cell-boundary rays are in): every case
+// traces the same ones, and brute force per case was most of the sanitized
+// run's unit time (which runs each shard's tests in one process).
+struct ReferenceRays {
+  std::vector<Ray> rays;
+  std::vector<Hit> closest;
+};
+const ReferenceRays& referenceRays(const testmesh::NamedMesh& mesh, bool withBoundaryRays) {
+  static std::map<std::pair<std::string, bool>, ReferenceRays> cache;
+  auto [at, added] = cache.try_emplace({mesh.name, withBoundaryRays});
+  if (added) {
+    ReferenceRays& r = at->second;
+    r.rays = testmesh::rayMix(testmesh::boundsOf(mesh.tris), 1000, 42);
+    if (withBoundaryRays) {
+      const std::vector<Ray> edge = boundaryRays(buildUniformGrid(mesh.tris), 2000, 9);
+      r.rays.insert(r.rays.end(), edge.begin(), edge.end());
+    }
+    for (const Ray& ray : r.rays) r.closest.push_back(intersectBruteForce(mesh.tris, ray, false));
+  }
+  return at->second;
+}
+
 void expectCpuAgreement(const CpuCase& c, const testmesh::NamedMesh& mesh) {
   const Structure& s = *c.structure;
-  const auto& tris = mesh.tris;
-  const UniformGrid grid = buildUniformGrid(tris);
-  std::vector<Ray> rays = testmesh::rayMix(testmesh::boundsOf(tris), 1000, 42);
   // Rays starting on cell planes, many lying in a triangle's plane, test our
   // structures' watertight rules; Embree's triangle test is not watertight
   // (tests/gl/watertight_test.cpp bounds its leaks), so it meets random rays only.
-  if (!s.runsOn(RendererId::Embree)) {
-    const std::vector<Ray> edge = boundaryRays(grid, 2000, 9);
-    rays.insert(rays.end(), edge.begin(), edge.end());
-  }
-  const auto accel = makeCpuStructure(s, tris, c.config);
-  const Agreement a = compareWithBruteForce(s, *accel, tris, rays);
+  const ReferenceRays& reference = referenceRays(mesh, !s.runsOn(RendererId::Embree));
+  const auto accel = makeCpuStructure(s, mesh.tris, c.config);
+  const Agreement a = compareWithBruteForce(s, *accel, mesh.tris, reference.rays, reference.closest);
   const std::string what = mesh.name + " / " + c.name;
   EXPECT_EQ(a.foundMismatch, 0u) << what;
   EXPECT_EQ(a.tieMismatch, 0u) << what;

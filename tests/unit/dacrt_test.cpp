@@ -4,6 +4,7 @@
 // seed's limits and at rLimit = pLimit = 1; and its two filters, the
 // triangle/cell and cone/cell tests, against brute-force sampling.
 
+#include <map>
 #include <random>
 #include <string>
 #include <vector>
@@ -103,7 +104,16 @@ struct Mismatches {
   size_t found = 0, nearest = 0, bogusAnyHit = 0, hits = 0;
 };
 
-Mismatches compare(std::span<const Triangle> tris, const Batch& b, const dacrt::Settings& settings) {
+// Brute force on each active ray of b (any hit for its shadow queries).
+std::vector<Hit> bruteForceHits(std::span<const Triangle> tris, const Batch& b) {
+  std::vector<Hit> hits(b.rays.size());
+  for (size_t i = 0; i < b.rays.size(); ++i)
+    if (b.active[i]) hits[i] = intersectBruteForce(tris, b.rays[i], b.anyHit[i] != 0);
+  return hits;
+}
+
+Mismatches compare(std::span<const Triangle> tris, const Batch& b, std::span<const Hit> reference,
+                   const dacrt::Settings& settings) {
   std::vector<Hit> hits(b.rays.size());
   std::vector<RayStats> stats(b.rays.size());
   const FilterStats counters = dacrt::trace(tris, settings, b.view(2), hits, stats);
@@ -111,7 +121,7 @@ Mismatches compare(std::span<const Triangle> tris, const Batch& b, const dacrt::
   for (size_t i = 0; i < b.rays.size(); ++i) {
     if (!b.active[i]) continue;
     const Ray& ray = b.rays[i];
-    const Hit ref = intersectBruteForce(tris, ray, b.anyHit[i] != 0);
+    const Hit& ref = reference[i];
     const Hit& h = hits[i];
     if (h.found() != ref.found()) {
       ++m.found;
@@ -154,18 +164,38 @@ std::vector<testmesh::NamedMesh> meshes() {
 
 class DacrtAgreement : public ::testing::TestWithParam<std::tuple<size_t, size_t>> {};
 
+// A mesh's three batches and brute force's hits on them, made once per
+// process: every variant traces the same ones, and recomputing brute force
+// over the dense sphere per variant was a minute of the sanitized run (which
+// runs each shard's tests in one process).
+struct ReferenceBatch {
+  std::string what;
+  Batch batch;
+  std::vector<Hit> hits;
+};
+const std::vector<ReferenceBatch>& referenceBatches(size_t meshIndex) {
+  static std::map<size_t, std::vector<ReferenceBatch>> cache;
+  auto [at, added] = cache.try_emplace(meshIndex);
+  if (added) {
+    const std::vector<Triangle> tris = meshes().at(meshIndex).tris;
+    const Aabb bounds = testmesh::boundsOf(tris);
+    const int side = 48;  // 6 x 6 packets
+    for (auto& [what, batch] : {std::pair{"primary", primaryBatch(bounds, side)},
+                                std::pair{"shadow", shadowBatch(tris, bounds, side)},
+                                std::pair{"mixed", mixedBatch(bounds)}})
+      at->second.push_back({what, batch, bruteForceHits(tris, batch)});
+  }
+  return at->second;
+}
+
 TEST_P(DacrtAgreement, BatchesEqualBruteForce) {
   const testmesh::NamedMesh mesh = meshes().at(std::get<0>(GetParam()));
   const Variant& v = kVariants[std::get<1>(GetParam())];
   dacrt::Settings settings;
   settings.rLimit = v.rLimit, settings.pLimit = v.pLimit, settings.cones = v.cones, settings.medianSplit = v.median;
-  const Aabb bounds = testmesh::boundsOf(mesh.tris);
-  const int side = 48;  // 6 x 6 packets
-  for (const auto& [what, batch] : {std::pair{"primary", primaryBatch(bounds, side)},
-                                    std::pair{"shadow", shadowBatch(mesh.tris, bounds, side)},
-                                    std::pair{"mixed", mixedBatch(bounds)}}) {
-    const Mismatches m = compare(mesh.tris, batch, settings);
-    SCOPED_TRACE(mesh.name + " / " + v.name + " / " + what);
+  for (const ReferenceBatch& r : referenceBatches(std::get<0>(GetParam()))) {
+    const Mismatches m = compare(mesh.tris, r.batch, r.hits, settings);
+    SCOPED_TRACE(mesh.name + " / " + v.name + " / " + r.what);
     EXPECT_EQ(m.found, 0u);
     EXPECT_EQ(m.nearest, 0u);
     EXPECT_EQ(m.bogusAnyHit, 0u);
