@@ -10,10 +10,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 target=(--target passtrace)
+python=()  # the Python package's build and test packages: not needed for the first image
 case "${1:-}" in
   "") ;;
-  --python) target=(--target passtrace _passtrace) ;;
-  --tests) target=() ;;
+  --python) target=(--target passtrace _passtrace) python=(pybind11-dev python3-dev python3-numpy) ;;
+  --tests) target=() python=(pybind11-dev python3-dev python3-numpy python3-pytest) ;;
   *) echo "setup: unknown argument '$1' (expected nothing, --python or --tests)" >&2; exit 2 ;;
 esac
 
@@ -30,8 +31,7 @@ packages=(
   glmark2-data                                  # the Stanford bunny (bunny.obj)
   libembree-dev                                 # Intel Embree 3, the CPU baseline (-r 3; optional)
   python3 python3-matplotlib                    # the benchmark report and its plots
-  pybind11-dev python3-dev python3-numpy        # the Python package (python/; optional)
-  python3-pytest                                # its tests (optional)
+  "${python[@]}"                                # the Python package (python/) and its tests
 )
 missing=()
 for p in "${packages[@]}"; do
