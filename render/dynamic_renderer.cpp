@@ -1,3 +1,4 @@
+#include "accel/milliseconds_since.h"
 #include "render/dynamic_renderer.h"
 
 #include <chrono>
@@ -12,10 +13,6 @@ namespace passtrace {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double millisecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 class DynamicCpu final : public DynamicRenderer {
  public:

@@ -17,7 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-[[noreturn]] void fail(const fs::path& path, std::string reason) {
+[[noreturn]] void failExr(const fs::path& path, std::string reason) {
   // OpenEXR's messages may contain newlines; ours are one line.
   std::replace(reason.begin(), reason.end(), '\n', ' ');
   if (reason.empty()) reason = "unknown OpenEXR error";
@@ -66,7 +66,7 @@ std::string encodeExr(const fs::path& path, int width, int height, std::span<con
     }  // the destructor writes the line offset table
     return memory.take();
   } catch (const std::exception& e) {
-    fail(path, e.what());
+    failExr(path, e.what());
   }
 }
 
@@ -82,9 +82,9 @@ ExrFile::ExrFile(const fs::path& path) : path_(path) {
     width_ = window.max.x - window.min.x + 1;
     height_ = window.max.y - window.min.y + 1;
   } catch (const std::exception& e) {
-    fail(path, e.what());
+    failExr(path, e.what());
   }
-  if (width_ <= 0 || height_ <= 0) fail(path, "not a 2D image");
+  if (width_ <= 0 || height_ <= 0) failExr(path, "not a 2D image");
 }
 
 ExrFile::~ExrFile() = default;
@@ -97,11 +97,11 @@ void ExrFile::read(std::span<const ExrChannel> channels, void* pixels, std::size
   Imf::FrameBuffer frame;
   for (const ExrChannel& channel : channels) {
     const Imf::Channel* stored = impl_->file.header().channels().findChannel(channel.name);
-    if (!stored) fail(path_, std::string("no channel '") + channel.name + "'");
+    if (!stored) failExr(path_, std::string("no channel '") + channel.name + "'");
     // A float channel may be stored as half (OpenEXR widens it); a uint32 one must be uint32.
     const bool fits = stored->type == typeOf(channel) || (!channel.uint32 && stored->type == Imf::HALF);
     if (!fits)
-      fail(path_, std::string("channel '") + channel.name + "' is " +
+      failExr(path_, std::string("channel '") + channel.name + "' is " +
                       (stored->type == Imf::UINT ? "uint32" : stored->type == Imf::HALF ? "half" : "float") +
                       ", expected " + (channel.uint32 ? "uint32" : "float"));
     frame.insert(channel.name, Imf::Slice(typeOf(channel), base + channel.offset, pixelBytes,
@@ -111,7 +111,7 @@ void ExrFile::read(std::span<const ExrChannel> channels, void* pixels, std::size
     impl_->file.setFrameBuffer(frame);
     impl_->file.readPixels(window.min.y, window.max.y);
   } catch (const std::exception& e) {
-    fail(path_, e.what());
+    failExr(path_, e.what());
   }
 }
 

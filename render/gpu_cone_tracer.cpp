@@ -13,6 +13,7 @@
 #include "stream/shader_loop_budget.h"
 #include "stream/storage_buffer.h"
 #include "stream/stream_kernel.h"
+#include "stream/texel_address.h"
 
 namespace passtrace {
 namespace {
@@ -20,12 +21,10 @@ namespace {
 // Floats before a record's stack (kernels_glsl/cone/cone_record.glsl: CONE_HEADER).
 constexpr uint64_t kConeRecordHeader = 12;
 
-float bits(uint32_t u) { return std::bit_cast<float>(u); }
-
 void pushDouble(std::vector<float>& out, double d) {
   const uint64_t b = std::bit_cast<uint64_t>(d);
-  out.push_back(bits(uint32_t(b)));  // packDouble2x32: x the low word
-  out.push_back(bits(uint32_t(b >> 32)));
+  out.push_back(bitsAsFloat(uint32_t(b)));  // packDouble2x32: x the low word
+  out.push_back(bitsAsFloat(uint32_t(b >> 32)));
 }
 
 }  // namespace

@@ -40,6 +40,7 @@ command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache 
 # Paths relative to the checkout, so that another clone of the same sources
 # hits the cache; the precompiled headers' compiles are cacheable only so.
 export CCACHE_BASEDIR="$PWD" CCACHE_SLOPPINESS=pch_defines,time_macros
+command -v ninja > /dev/null && export CMAKE_GENERATOR=Ninja  # for a new build directory, as setup.sh
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Debug -DPASSTRACE_SANITIZE=ON "${launcher[@]}"
 # Only what the sanitized run uses: not the slow label's binary nor the measurement tools.
 targets=(passtrace passtrace_unit_tests passtrace_gl_tests passtrace_image_tests

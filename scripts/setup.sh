@@ -19,7 +19,7 @@ case "${1:-}" in
 esac
 
 packages=(
-  cmake g++ make pkg-config
+  cmake g++ make ninja-build pkg-config
   python3-glad                                  # generates the GL 4.5 core loader at build time
   libegl-dev libegl-mesa0 libgl1-mesa-dri       # headless EGL and Mesa's drivers (llvmpipe)
   libosmesa6-dev                                # the OSMesa backend (optional)
@@ -52,5 +52,8 @@ command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache 
 # Paths relative to the checkout, so that another clone of the same sources
 # hits the cache; the precompiled headers' compiles are cacheable only so.
 export CCACHE_BASEDIR="$PWD" CCACHE_SLOPPINESS=pch_defines,time_macros
+# Ninja for a new build directory (it schedules the compiles better than make:
+# 20 s less of a cold build here); an existing one keeps its generator.
+command -v ninja > /dev/null && export CMAKE_GENERATOR=Ninja
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${launcher[@]}"
 cmake --build build -j"$(nproc)" "${target[@]}"

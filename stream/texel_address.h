@@ -22,4 +22,8 @@ inline TexelCoord texelOf(uint32_t index, uint32_t widthLog2) {
 inline float packIndex(uint32_t index) { return std::bit_cast<float>(index + 0x00800000u); }
 inline uint32_t unpackIndex(float packed) { return std::bit_cast<uint32_t>(packed) - 0x00800000u; }
 
+// A uint's raw bits in a float, for data the kernels read back with
+// floatBitsToUint (the cone kernels' buffers: never sampled nor filtered).
+inline float bitsAsFloat(uint32_t u) { return std::bit_cast<float>(u); }
+
 }  // namespace passtrace

@@ -8,27 +8,25 @@
 namespace passtrace {
 namespace {
 
-using Cursor = BihStreamCursor;
-
 // One rounded product each, exact for 0 and infinities (no inf - inf).
 float widenUp(float t) { return t * (t > 0.0f ? 1.0f + kBihSlack : 1.0f - kBihSlack); }
 float widenDown(float t) { return t * (t > 0.0f ? 1.0f - kBihSlack : 1.0f + kBihSlack); }
 
 // The leaf or the culled node is finished: the latest stacked child, or the end.
-void popOrDone(Cursor& c) {
-  c.mode = Cursor::kModeDown;
+void popOrDone(BihStreamCursor& c) {
+  c.mode = BihStreamCursor::kModeDown;
   if (c.stack.empty()) {
     c.done = true;
     return;
   }
-  const Cursor::Entry e = c.stack.back();
+  const BihStreamCursor::Entry e = c.stack.back();
   c.stack.pop_back();
   c.node = e.node;
   c.tMin = e.tMin;
   c.tMax = e.tMax;
 }
 
-void step(const BihStreamData& d, const Ray& ray, const glm::vec3& invDir, bool anyHit, Cursor& c) {
+void step(const BihStreamData& d, const Ray& ray, const glm::vec3& invDir, bool anyHit, BihStreamCursor& c) {
   ++c.stats.steps;
   if (c.mode >= 0.0f) {
     const uint32_t entry = unpackIndex(c.mode);
@@ -95,7 +93,7 @@ void step(const BihStreamData& d, const Ray& ray, const glm::vec3& invDir, bool 
 }  // namespace
 
 BihStreamCursor bihStreamStart(const BihStreamData& d, const Ray& ray) {
-  Cursor c;
+  BihStreamCursor c;
   c.best.t = ray.tMax;
   float tNear, tFar;
   clipToBox(ray.origin, safeInverse(ray.direction), d.sceneBox, tNear, tFar);

@@ -8,13 +8,10 @@
 #include "accel/bvh/gpu_octant_bvh_traversal.h"
 #include "accel/bvh/octant_sequences.h"
 #include "accel/bvh_stack/bvh_stack_structure.h"
+#include "accel/milliseconds_since.h"
 
 namespace passtrace {
 namespace {
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 GoldsmithSalmonConfig gsConfig(const AccelBuildConfig& config) { return {config.gsTries, config.gsSeed}; }
 

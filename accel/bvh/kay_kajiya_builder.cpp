@@ -20,7 +20,7 @@ struct Ref {
 
 // A pending node: its triangles are refs[begin, end), and centroidBox bounds
 // their centroids (the node's own box is already stored in the node).
-struct Work {
+struct PendingRange {
   uint32_t node;
   uint32_t begin, end;
   Aabb centroidBox;
@@ -53,9 +53,9 @@ Bvh buildKayKajiya(std::span<const Triangle> tris, const KayKajiyaConfig& config
   bvh.nodes.push_back(BvhNode{rootBox});
 
   std::mt19937_64 rng(config.seed);
-  std::vector<Work> stack{{0, 0, n, rootCentroids}};  // depth-first: holds at most depth + 1 items
+  std::vector<PendingRange> stack{{0, 0, n, rootCentroids}};  // depth-first: holds at most depth + 1 items
   while (!stack.empty()) {
-    const Work work = stack.back();
+    const PendingRange work = stack.back();
     stack.pop_back();
     const uint32_t size = work.end - work.begin;
     if (size == 1) {

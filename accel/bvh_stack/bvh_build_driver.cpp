@@ -18,7 +18,7 @@ Aabb boxOf(std::span<const BvhBuildRef> refs) {
 
 int largestAxis(const glm::vec3& e) { return e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2); }
 
-struct Work {
+struct PendingSplit {
   std::vector<BvhBuildRef> refs;
   uint32_t depth;   // level of this node, the root 1
   uint32_t parent;  // node whose slot it fills; kNoHit for the root
@@ -75,10 +75,10 @@ BinaryBvh buildSequential(std::vector<BvhBuildRef> refs, uint32_t depth, const B
                           const BvhSplitter& split) {
   BinaryBvh bvh;
   bvh.bounds = boxOf(refs);
-  std::vector<Work> stack;
+  std::vector<PendingSplit> stack;
   stack.push_back({std::move(refs), depth, kNoHit, 0});
   while (!stack.empty()) {
-    Work work = std::move(stack.back());
+    PendingSplit work = std::move(stack.back());
     stack.pop_back();
     const Aabb box = boxOf(work.refs);
     std::vector<BvhBuildRef> left, right;

@@ -5,12 +5,12 @@
 // culled on pop. The Kay/Kajiya tree of "kk-bvh"; its escape sequence
 // cannot serve a cone, which needs both children of a node.
 #include <algorithm>
-#include <bit>
 #include <chrono>
 
 #include "accel/bvh/bvh_structures.h"
 #include "accel/bvh/kay_kajiya_builder.h"
 #include "accel/cone/cone_traversal.h"
+#include "stream/texel_address.h"
 
 namespace passtrace {
 namespace {
@@ -79,8 +79,6 @@ class BvhConeTraversal final : public ConeTraversal {
   AccelStats stats_;
 };
 
-float bits(uint32_t u) { return std::bit_cast<float>(u); }
-
 }  // namespace
 
 ConeStreamTree makeKkBvhStreamCone(std::span<const Triangle> tris, const AccelBuildConfig& config) {
@@ -94,11 +92,11 @@ ConeStreamTree makeKkBvhStreamCone(std::span<const Triangle> tris, const AccelBu
   uint32_t widest = 1;
   for (const BvhNode& n : bvh.nodes) {
     d.insert(d.end(), {n.box.min.x, n.box.min.y, n.box.min.z, n.box.max.x, n.box.max.y, n.box.max.z,
-                       bits(n.triangle), bits(n.firstChild), bits(n.childCount)});
+                       bitsAsFloat(n.triangle), bitsAsFloat(n.firstChild), bitsAsFloat(n.childCount)});
     widest = std::max(widest, n.childCount);
   }
   out.refBase = uint32_t(d.size());
-  for (uint32_t c : bvh.children) d.push_back(bits(c));
+  for (uint32_t c : bvh.children) d.push_back(bitsAsFloat(c));
   out.triBase = uint32_t(d.size());
   for (const Triangle& t : tris)
     for (const glm::vec3& p : {t.v0, t.v1, t.v2}) d.insert(d.end(), {p.x, p.y, p.z});

@@ -4,12 +4,12 @@
 // non-empty child is entered, the other pushed with its own interval.
 // Nodes that start beyond the hit list's cut-off are culled (Listing 1's
 // "max(t1, tmin) <= t_n"), on push and on pop.
-#include <bit>
 #include <chrono>
 
 #include "accel/cone/cone_traversal.h"
 #include "accel/kd/kd_structures.h"
 #include "accel/kd/kd_tree_pbrt_builder.h"
+#include "stream/texel_address.h"
 
 namespace passtrace {
 namespace {
@@ -98,8 +98,6 @@ KdTree pbrtTree(std::span<const Triangle> tris, const AccelBuildConfig& config) 
   return buildKdTreePbrt(tris, kdPbrtConfigFor(config));
 }
 
-float bits(uint32_t u) { return std::bit_cast<float>(u); }
-
 }  // namespace
 
 ConeStreamTree makeKdTreeStreamCone(std::span<const Triangle> tris, const AccelBuildConfig& config) {
@@ -113,10 +111,10 @@ ConeStreamTree makeKdTreeStreamCone(std::span<const Triangle> tris, const AccelB
   for (int a = 0; a < 3; ++a) d.push_back(tree.bounds.min[a]);
   for (int a = 0; a < 3; ++a) d.push_back(tree.bounds.max[a]);
   out.nodeBase = uint32_t(d.size());
-  for (const KdNode& n : tree.nodes) d.insert(d.end(), {n.split, bits(n.axis), bits(n.rightChild), bits(n.firstRef),
-                                                         bits(n.refCount)});
+  for (const KdNode& n : tree.nodes) d.insert(d.end(), {n.split, bitsAsFloat(n.axis), bitsAsFloat(n.rightChild), bitsAsFloat(n.firstRef),
+                                                         bitsAsFloat(n.refCount)});
   out.refBase = uint32_t(d.size());
-  for (uint32_t r : tree.references) d.push_back(bits(r));
+  for (uint32_t r : tree.references) d.push_back(bitsAsFloat(r));
   out.triBase = uint32_t(d.size());
   for (const Triangle& t : tris)
     for (const glm::vec3& p : {t.v0, t.v1, t.v2}) d.insert(d.end(), {p.x, p.y, p.z});

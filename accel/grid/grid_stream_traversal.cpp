@@ -9,15 +9,13 @@
 namespace passtrace {
 namespace {
 
-using Cursor = GridStreamCursor;
-
 float fetchScalar(std::span<const glm::vec4> data, uint32_t index) { return data[index >> 2][int(index & 3u)]; }
 
 uint32_t linearCell(const GridStreamData& d, const glm::ivec3& c) {
   return uint32_t(c.x) + uint32_t(d.resolution.x) * (uint32_t(c.y) + uint32_t(d.resolution.y) * uint32_t(c.z));
 }
 
-void advance(const GridStreamData& d, const Ray& ray, Cursor& c) {
+void advance(const GridStreamData& d, const Ray& ray, GridStreamCursor& c) {
   const float exit = std::min(std::min(c.tNext.x, c.tNext.y), c.tNext.z);
   if (c.best.t <= exit || exit == kInfinity) {
     c.done = true;
@@ -30,7 +28,7 @@ void advance(const GridStreamData& d, const Ray& ray, Cursor& c) {
   // Recomputed from the boundary itself, not accumulated, so it never drifts.
   const float boundary = d.gridMin[axis] + float(c.cell[axis] + (forward ? 1 : 0)) * d.cellSize[axis];
   c.tNext[axis] = (boundary - ray.origin[axis]) * invDir[axis];
-  c.mode = Cursor::kModeVisit;
+  c.mode = GridStreamCursor::kModeVisit;
   c.done = c.cell[axis] < 0 || c.cell[axis] >= d.resolution[axis];
 }
 
@@ -55,7 +53,7 @@ GridStreamData makeGridStreamData(const Aabb& bounds, const glm::ivec3& resoluti
 }
 
 GridStreamCursor gridStreamStart(const GridStreamData& d, const Ray& ray) {
-  Cursor c;
+  GridStreamCursor c;
   c.best.t = ray.tMax;
   const glm::vec3 invDir = safeInverse(ray.direction);
   const Aabb grid{d.gridMin, d.gridMin + glm::vec3(d.resolution) * d.cellSize};

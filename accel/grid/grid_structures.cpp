@@ -9,14 +9,11 @@
 #include "accel/grid/grid_traversal.h"
 #include "accel/grid/uniform_grid.h"
 #include "accel/grid/uniform_grid_builder.h"
+#include "accel/milliseconds_since.h"
 #include "accel/reference_lists.h"
 
 namespace passtrace {
 namespace {
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 // The uniform grid, 3D-DDA.
 class GridAccelerator final : public CpuAccelerator {

@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "accel/kd/kd_structures.h"
+#include "accel/milliseconds_since.h"
 #include "accel/reference_lists.h"
 #include "stream/inout_stream.h"
 
@@ -11,10 +12,6 @@ namespace passtrace {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double millisecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // Two trees reported as one structure: sizes added, the deeper depth.
 AccelStats combined(const AccelStats& a, const AccelStats& b) {

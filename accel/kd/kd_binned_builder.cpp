@@ -14,10 +14,10 @@ namespace passtrace {
 namespace {
 
 // Per axis, references starting (min) and ending (max) in each bin.
-struct Bins {
+struct EdgeBins {
   std::array<std::array<uint32_t, kKdBins>, 3> min{}, max{};
 
-  void add(const Bins& o) {
+  void add(const EdgeBins& o) {
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < kKdBins; ++b) min[a][b] += o.min[a][b], max[a][b] += o.max[a][b];
   }
@@ -33,7 +33,7 @@ int binOf(float x, float lo, float scale, int binCount) {
 }
 
 void binRefs(std::span<const KdRef> refs, const Aabb& voxel, const glm::vec3& scale, const bool* axes, int binCount,
-             Bins& bins) {
+             EdgeBins& bins) {
   for (const KdRef& r : refs)
     for (int a = 0; a < 3; ++a) {
       if (!axes[a]) continue;
@@ -62,17 +62,17 @@ KdSplit findBinnedSplit(std::span<const KdRef> refs, const Aabb& voxel, const Kd
   for (int a = 0; a < 3; ++a)
     if (axes[a]) scale[a] = float(binCount) / e[a];
 
-  Bins bins;
+  EdgeBins bins;
   if (refs.size() < kKdParallelSweepRefs) {
     binRefs(refs, voxel, scale, axes, binCount, bins);
   } else {  // fixed chunks; integer sums, so any thread count gives the same bins
-    std::vector<Bins> partial(kKdSweepChunks);
+    std::vector<EdgeBins> partial(kKdSweepChunks);
     const size_t chunk = (refs.size() + kKdSweepChunks - 1) / kKdSweepChunks;
     tbb::parallel_for(size_t(0), kKdSweepChunks, [&](size_t c) {
       const size_t begin = std::min(refs.size(), c * chunk), end = std::min(refs.size(), begin + chunk);
       binRefs(refs.subspan(begin, end - begin), voxel, scale, axes, binCount, partial[c]);
     });
-    for (const Bins& p : partial) bins.add(p);
+    for (const EdgeBins& p : partial) bins.add(p);
   }
 
   // Constants in locals: the cost loop below stores to an array, and the

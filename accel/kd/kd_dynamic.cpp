@@ -7,14 +7,11 @@
 #include "accel/kd/kd_merge.h"
 #include "accel/kd/kd_structures.h"
 #include "accel/kd/kd_traversal.h"
+#include "accel/milliseconds_since.h"
 #include "accel/reference_lists.h"
 
 namespace passtrace {
 namespace {
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 
 // One tree traced as its row does on the CPU.

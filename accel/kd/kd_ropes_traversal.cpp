@@ -9,12 +9,10 @@
 namespace passtrace {
 namespace {
 
-using Cursor = KdRopesCursor;
-
 float listEntry(const KdRopesData& d, uint32_t entry) { return d.lists[entry >> 2][int(entry & 3u)]; }
 
 // The leaf at c.node is searched: leave it through its nearest face on the side the ray heads to.
-void leaveLeaf(const KdRopesData& d, const Ray& ray, const glm::vec3& invDir, Cursor& c) {
+void leaveLeaf(const KdRopesData& d, const Ray& ray, const glm::vec3& invDir, KdRopesCursor& c) {
   const glm::vec3 lo(d.nodes[c.node + 2]), hi(d.nodes[c.node + 3]);
   glm::vec3 t;
   for (int k = 0; k < 3; ++k) {
@@ -35,10 +33,10 @@ void leaveLeaf(const KdRopesData& d, const Ray& ray, const glm::vec3& invDir, Cu
   }
   c.node = unpackIndex(rope);
   c.tEntry = std::max(c.tEntry, tExit);
-  c.mode = Cursor::kModeDown;
+  c.mode = KdRopesCursor::kModeDown;
 }
 
-void step(const KdRopesData& d, const Ray& ray, const glm::vec3& invDir, bool anyHit, Cursor& c) {
+void step(const KdRopesData& d, const Ray& ray, const glm::vec3& invDir, bool anyHit, KdRopesCursor& c) {
   if (c.stats.steps >= d.maxSteps) {  // the robustness bound
     c.done = true;
     return;
@@ -85,7 +83,7 @@ uint64_t kdRopesMaxSteps(size_t leaves, uint32_t depth, size_t listEntries) {
 }
 
 KdRopesCursor kdRopesStart(const KdRopesData& d, const Ray& ray) {
-  Cursor c;
+  KdRopesCursor c;
   c.best.t = ray.tMax;
   float tNear, tFar;
   const bool inside = clipToBox(ray.origin, safeInverse(ray.direction), d.sceneBox, tNear, tFar);

@@ -9,8 +9,6 @@
 namespace passtrace {
 namespace {
 
-using Cursor = KdStreamCursor;
-
 uint32_t stride(const KdStreamData& d) { return d.variant == KdStreamVariant::Backtrack ? 3u : 1u; }
 
 // A node's (first) texel in the restart layout's form, decoding compact nodes.
@@ -21,7 +19,7 @@ glm::vec4 nodeTexel(const KdStreamData& d, uint32_t node) {
 
 float listEntry(const KdStreamData& d, uint32_t entry) { return d.lists[entry >> 2][int(entry & 3u)]; }
 
-void leafFinished(const KdStreamData& d, Cursor& c, const glm::vec4& leaf) {
+void leafFinished(const KdStreamData& d, KdStreamCursor& c, const glm::vec4& leaf) {
   if (c.best.t <= c.tMax || c.tMax >= c.sceneMax) {
     c.done = true;
     return;
@@ -33,11 +31,11 @@ void leafFinished(const KdStreamData& d, Cursor& c, const glm::vec4& leaf) {
       c.done = true;
     } else {
       c.node = unpackIndex(leaf.z);
-      c.mode = Cursor::kModeUp;
+      c.mode = KdStreamCursor::kModeUp;
     }
     return;
   }
-  c.mode = Cursor::kModeDown;
+  c.mode = KdStreamCursor::kModeDown;
   if (!c.stack.empty()) {  // pop the latest far child
     const KdCircularStack::Entry e = c.stack.pop();
     c.node = e.node;
@@ -53,7 +51,7 @@ void leafFinished(const KdStreamData& d, Cursor& c, const glm::vec4& leaf) {
 }
 
 
-void step(const KdStreamData& d, const Ray& ray, const glm::vec3& invDir, bool anyHit, Cursor& c) {
+void step(const KdStreamData& d, const Ray& ray, const glm::vec3& invDir, bool anyHit, KdStreamCursor& c) {
   ++c.stats.steps;
   if (c.mode >= 0.0f) {
     const uint32_t entry = unpackIndex(c.mode);
@@ -71,12 +69,12 @@ void step(const KdStreamData& d, const Ray& ray, const glm::vec3& invDir, bool a
     }
     return;
   }
-  if (c.mode == Cursor::kModeUp) {
+  if (c.mode == KdStreamCursor::kModeUp) {
     const Aabb box{glm::vec3(d.nodes[stride(d) * c.node + 1]), glm::vec3(d.nodes[stride(d) * c.node + 2])};
     float tNear, tFar;
     clipToBox(ray.origin, invDir, box, tNear, tFar);
     if (tFar > c.tMin) {
-      c.mode = Cursor::kModeDown;
+      c.mode = KdStreamCursor::kModeDown;
       c.tMax = std::min(tFar, c.sceneMax);
     } else {
       const float parent = d.nodes[stride(d) * c.node].z;
@@ -119,7 +117,7 @@ void step(const KdStreamData& d, const Ray& ray, const glm::vec3& invDir, bool a
 }  // namespace
 
 KdStreamCursor kdStreamStart(const KdStreamData& d, const Ray& ray) {
-  Cursor c;
+  KdStreamCursor c;
   c.best.t = ray.tMax;
   float tNear, tFar;
   const bool inside = clipToBox(ray.origin, safeInverse(ray.direction), d.sceneBox, tNear, tFar);

@@ -13,15 +13,12 @@
 #include "accel/kd/kd_traversal.h"
 #include "accel/kd/kd_tree.h"
 #include "accel/kd/kd_tree_pbrt_builder.h"
+#include "accel/milliseconds_since.h"
 #include "accel/reference_lists.h"
 
 namespace passtrace {
 namespace {
 
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 // kd-tree and kd-pbrt: the tree walked with a stack (kd_traversal.h).
 class KdAccelerator final : public CpuAccelerator {

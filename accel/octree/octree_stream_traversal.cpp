@@ -10,8 +10,6 @@
 namespace passtrace {
 namespace {
 
-using Cursor = OctreeStreamCursor;
-
 // The child of `node` in stored octant `octant`, or -1 for an empty octant.
 float childOf(const OctreeStreamData& d, uint32_t node, int octant) {
   return d.nodes[kOctreeNodeStride * node + 1 + uint32_t(octant >> 2)][octant & 3];
@@ -19,10 +17,10 @@ float childOf(const OctreeStreamData& d, uint32_t node, int octant) {
 
 // The node the ray is at is finished: the next child of the innermost frame
 // that has one left (empty octants skipped), or the end.
-void advance(const OctreeStreamData& d, const RevellesRay& r, Cursor& c) {
-  c.mode = Cursor::kModeDown;
+void advance(const OctreeStreamData& d, const RevellesRay& r, OctreeStreamCursor& c) {
+  c.mode = OctreeStreamCursor::kModeDown;
   while (!c.frames.empty()) {
-    Cursor::Frame& f = c.frames.back();
+    OctreeStreamCursor::Frame& f = c.frames.back();
     const glm::vec3 tm = 0.5f * (f.t0 + f.t1);
     glm::vec3 c0, c1;
     revellesChild(f.current, f.t0, f.t1, tm, c0, c1);
@@ -41,7 +39,7 @@ void advance(const OctreeStreamData& d, const RevellesRay& r, Cursor& c) {
   c.done = true;
 }
 
-void step(const OctreeStreamData& d, const Ray& ray, const RevellesRay& r, bool anyHit, Cursor& c) {
+void step(const OctreeStreamData& d, const Ray& ray, const RevellesRay& r, bool anyHit, OctreeStreamCursor& c) {
   ++c.stats.steps;
   if (c.mode >= 0.0f) {
     const uint32_t entry = unpackIndex(c.mode);
@@ -62,7 +60,7 @@ void step(const OctreeStreamData& d, const Ray& ray, const RevellesRay& r, bool 
   }
   glm::vec3 t0 = r.t0, t1 = r.t1;
   if (!c.frames.empty()) {
-    const Cursor::Frame& f = c.frames.back();
+    const OctreeStreamCursor::Frame& f = c.frames.back();
     revellesChild(f.current, f.t0, f.t1, 0.5f * (f.t0 + f.t1), t0, t1);
   }
   const float entry = std::max(std::max(t0.x, t0.y), t0.z);
@@ -93,7 +91,7 @@ void step(const OctreeStreamData& d, const Ray& ray, const RevellesRay& r, bool 
 }  // namespace
 
 OctreeStreamCursor octreeStreamStart(const OctreeStreamData& d, const Ray& ray) {
-  Cursor c;
+  OctreeStreamCursor c;
   c.best.t = ray.tMax;
   c.done = d.nodes.empty();
   return c;

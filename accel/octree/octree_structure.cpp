@@ -1,3 +1,4 @@
+#include "accel/milliseconds_since.h"
 #include "accel/octree/octree_structure.h"
 
 #include <algorithm>
@@ -12,10 +13,6 @@
 
 namespace passtrace {
 namespace {
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 void setOctreeStats(AccelStats& s, const Octree& octree) {
   s.nodes = octree.nodes.size();

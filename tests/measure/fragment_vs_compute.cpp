@@ -26,6 +26,7 @@
 
 #include "accel/bvh/bvh_structures.h"
 #include "accel/geometry/triangle_test.h"
+#include "accel/milliseconds_since.h"
 #include "accel/ray_stream_layout.h"
 #include "render/camera.h"
 #include "scenes/scene_registry.h"
@@ -66,10 +67,6 @@ void reset(InOutStream& stream, const Rays& rays) {
   stream.upload(kStateSurface, rays.state);
   stream.upload(kHitSurface, rays.hit);
   glFinish();
-}
-
-double millisecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
 }  // namespace
