@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (options.list) {
-      const std::string text = options.listJson ? passtrace::catalogJson(options.scenesDir).dump(2) + "\n"
+      const std::string text = options.listJson ? passtrace::catalogJsonText(options.scenesDir)
                                                 : passtrace::catalogText(options.scenesDir);
       if (options.json.empty()) std::cout << text;
       else {

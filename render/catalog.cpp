@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <nlohmann/json.hpp>
+
 #include "accel/registry.h"
 #include "passtrace_version.h"
 #include "scenes/real_scenes.h"
@@ -49,6 +51,10 @@ nlohmann::json catalogJson(const std::filesystem::path& realScenesDir) {
   nlohmann::json scenes = nlohmann::json::array();
   for (const auto& [name, number] : sceneRows(realScenesDir)) scenes.push_back({{"name", name}, {"number", number}});
   return {{"version", kVersion}, {"renderers", renderers}, {"accelerators", accelerators}, {"scenes", scenes}};
+}
+
+std::string catalogJsonText(const std::filesystem::path& realScenesDir) {
+  return catalogJson(realScenesDir).dump(2) + "\n";
 }
 
 std::string catalogText(const std::filesystem::path& realScenesDir) {

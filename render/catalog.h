@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <string>
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>  // the whole of it in catalog.cpp: a heavy parse
 
 namespace passtrace {
 
@@ -16,6 +16,9 @@ namespace passtrace {
 // The scenes list the real benchmark scenes found under `realScenesDir`
 // (--scenes-dir; empty: $PASSTRACE_SCENES_DIR or ../shared/scenes/real).
 nlohmann::json catalogJson(const std::filesystem::path& realScenesDir = {});
+// catalogJson() as the command line writes it (--list --json): indented, one
+// newline at the end.
+std::string catalogJsonText(const std::filesystem::path& realScenesDir = {});
 // The same as aligned text: one line per structure and per scene.
 std::string catalogText(const std::filesystem::path& realScenesDir = {});
 

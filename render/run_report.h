@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>  // the whole of it in run_report.cpp: a heavy parse
 
 #include "accel/cpu_accelerator.h"
 

@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include <nlohmann/json.hpp>
+
 #include "passtrace_version.h"
 #include "render/camera.h"
 #include "render/camera_path.h"

@@ -2,6 +2,7 @@
 // (render/run_report.h nodeTestsPerRay, accel/registry.h Structure).
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "accel/registry.h"
 #include "render/run_report.h"
