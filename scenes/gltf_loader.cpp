@@ -21,15 +21,12 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
-// tinygltf's JSON is nlohmann's, which the project already links.
-#define TINYGLTF_IMPLEMENTATION
-#include "scenes/scene_limits.h"
-#include "scenes/tinygltf_include.h"
-
 #include "scenes/gltf_animation.h"
 #include "scenes/scene_error.h"
+#include "scenes/scene_limits.h"
 #include "scenes/scene_registry.h"
 #include "scenes/tessellate.h"
+#include "scenes/tinygltf_include.h"
 
 namespace passtrace {
 namespace {

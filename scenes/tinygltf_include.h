@@ -1,8 +1,8 @@
 #pragma once
 // tinygltf as passtrace compiles it: images are never decoded (textures are
 // not rendered), so no stb_image, and its warnings, which are tinygltf's own,
-// are silenced. scenes/gltf_loader.cpp defines TINYGLTF_IMPLEMENTATION before
-// including this; every other user gets the declarations only.
+// are silenced. scenes/tinygltf_implementation.cpp defines TINYGLTF_IMPLEMENTATION
+// before including this; every other user gets the declarations only.
 
 #define TINYGLTF_NO_STB_IMAGE
 #define TINYGLTF_NO_STB_IMAGE_WRITE
