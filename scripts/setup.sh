@@ -2,19 +2,22 @@
 # Sets passtrace up on a Debian 12 machine: installs the Debian packages it
 # needs (only those missing, so running it again is cheap), then configures
 # build/ and builds the program (build/passtrace) and its kernels — with
-# --python also the Python package (build/python/passtrace), with --tests
-# everything: the package, the test binaries and measurement tools too.
+# --python also the Python package (build/python/passtrace) and matplotlib
+# for the report's plots, with --tests everything: the package, the test
+# binaries and measurement tools too.
 #   bash scripts/setup.sh            the program: the README's first command
 #   bash scripts/setup.sh --python   the program and the Python package (PYTHONPATH=build/python)
 #   bash scripts/setup.sh --tests    everything: the README's second command
 set -euo pipefail
 cd "$(dirname "$0")/.."
 target=(--target passtrace)
-python=()  # the Python package's build and test packages: not needed for the first image
+# Python's packages (the Python package, its tests, the report's plots) are
+# not needed for the first image, and matplotlib brings 386 MB with it.
+python=()
 case "${1:-}" in
   "") ;;
-  --python) target=(--target passtrace _passtrace) python=(pybind11-dev python3-dev python3-numpy) ;;
-  --tests) target=() python=(pybind11-dev python3-dev python3-numpy python3-pytest) ;;
+  --python) target=(--target passtrace _passtrace) python=(pybind11-dev python3-dev python3-numpy python3-matplotlib) ;;
+  --tests) target=() python=(pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib) ;;
   *) echo "setup: unknown argument '$1' (expected nothing, --python or --tests)" >&2; exit 2 ;;
 esac
 
@@ -30,8 +33,8 @@ packages=(
   libtbb-dev                                    # oneTBB: the CPU renderer's threads
   glmark2-data                                  # the Stanford bunny (bunny.obj)
   libembree-dev                                 # Intel Embree 3, the CPU baseline (-r 3; optional)
-  python3 python3-matplotlib                    # the benchmark report and its plots
-  "${python[@]}"                                # the Python package (python/) and its tests
+  python3                                       # the benchmark (scripts/bench.py)
+  "${python[@]}"                                # the Python package (python/), its tests, the report's plots
 )
 missing=()
 for p in "${packages[@]}"; do
