@@ -20,9 +20,12 @@ stage=$(mktemp -d); trap 'rm -rf "$stage"' EXIT
 mkdir -p "$stage/bin" "$stage/lib"
 for b in "${bins[@]}"; do cp "$build/$b" "$stage/bin/"; done
 strip "$stage/bin/"*
-# The libraries the server lacks: all but the C/C++ runtime and the GL loaders (the driver's).
+# The libraries the server lacks: all but the C/C++ runtime. glvnd's libEGL
+# and libGLdispatch go too: the H200 machine of 2026-11-28 had only the
+# driver's vendor library (libEGL_nvidia.so.0, found through glvnd's
+# egl_vendor.d), not glvnd's loader, which is vendor-neutral.
 for b in "${bins[@]}"; do ldd "$build/$b"; done | awk '$3 ~ /^\// {print $3}' | sort -u |
-  grep -Ev '/(libc|libm|libstdc\+\+|libgcc_s|libEGL|libGLdispatch|libGLX|libOpenGL)\.so' |
+  grep -Ev '/(libc|libm|libstdc\+\+|libgcc_s)\.so' |
   xargs -I{} cp -L {} "$stage/lib/"
 cp /usr/share/glmark2/models/bunny.obj "$stage/"
 if [ -n "$bart" ]; then mkdir -p "$stage/bart" && cp -r "$bart/kitchen" "$stage/bart/"; fi
