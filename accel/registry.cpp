@@ -131,7 +131,8 @@ std::vector<Structure> makeRows() {
                       "filtered together each frame",
        .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeDacrtCpu,
-       .memory = {48, 0}, .reads = {P::DacrtRLimit, P::DacrtPLimit, P::DacrtCones, P::DacrtSplit}},
+       .memory = {48, 0}, .reads = {P::DacrtRLimit, P::DacrtPLimit, P::DacrtCones, P::DacrtSplit},
+       .cpuTracesBatches = true},
       // Seed 002: kd-restart's tree with ropes (Popov et al. 2007). Memory measured for kd-ropes and kd-compact
       // in one session in which kd-stack measured 693 bytes per triangle on the CPU.
       {.name = "kd-ropes", .family = "kd",

@@ -117,6 +117,10 @@ struct Structure {
   // DACRT). True: the CPU traversal (-r 1) counts one step per node or cell
   // visited and tests a leaf's triangles inside that step, so node tests = steps.
   bool cpuStepsVisitNodes = false;
+  // The CPU traversal traces each generation of rays as one batch (DACRT):
+  // a ray's counts depend on the rays traced with it, so an MPI run leaves a
+  // frame whole rather than dividing its rows among the ranks (render/session.cpp).
+  bool cpuTracesBatches = false;
   // --cone: the structure's cone query on the CPU renderer (accel/cone/); null = none.
   ConeFactory cone = nullptr;
   // --cone with -r 2: the kd-tree the stream cone kernel walks (render/gpu_cone_tracer.h); null = none.

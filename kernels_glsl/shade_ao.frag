@@ -6,6 +6,7 @@
 #include "texel_address.glsl"
 #include "ray_kinds.glsl"
 #include "ao_sampling.glsl"
+#include "row_bands.glsl"
 
 layout(early_fragment_tests) in;
 
@@ -61,7 +62,7 @@ void main() {
     next = int(color.a) < uSamples;
   }
   uvec2 at = uvec2(gl_FragCoord.xy);
-  vec3 newDirection = next ? aoDirection(pending.rgb, aoRandom(at.y * uStreamWidth + at.x, uint(color.a)))
+  vec3 newDirection = next ? aoDirection(pending.rgb, aoRandom(imageRow(at.y) * uStreamWidth + at.x, uint(color.a)))
                            : direction.xyz;
   float kind = next ? RAY_SHADOW : RAY_NONE;
   float tMax = next ? uAoDistance : INF;

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "accel/geometry/geometry.h"
+#include "render/row_bands.h"
 #include "scenes/scene.h"
 
 namespace passtrace {
@@ -16,12 +17,14 @@ namespace passtrace {
 struct CameraBasis {
   glm::vec3 eye, forward, right, up;
   float tanHalfFov;
-  int width, height;
+  int width, height;  // the whole image's
+  RowBands rows;      // the rows traced (an MPI rank's); py is a local row
 };
 
 // Throws std::invalid_argument for eye == lookAt, an up vector parallel to the
 // view direction, a field of view outside (0, 180) or an empty image.
-CameraBasis makeCameraBasis(const CameraSpec& camera, int width, int height);
+// `height` is the image traced: the whole one, or `rows`' local rows.
+CameraBasis makeCameraBasis(const CameraSpec& camera, int width, int height, const RowBands& rows = {});
 
 // Pixel (px, py)'s direction, in three steps so that a tile can compute sx
 // once per column and sy once per row. Inline: renderers call these per
@@ -32,6 +35,7 @@ inline float cameraScreenX(const CameraBasis& b, int px) {
   return (2.0f * (float(px) + 0.5f) / w - 1.0f) * b.tanHalfFov * (w / h);
 }
 inline float cameraScreenY(const CameraBasis& b, int py) {
+  py = b.rows.globalRow(py);
   return (1.0f - 2.0f * (float(py) + 0.5f) / float(b.height)) * b.tanHalfFov;
 }
 inline glm::vec3 cameraDirection(const CameraBasis& b, float sx, float sy) {

@@ -1,5 +1,7 @@
 #include "render/cpu_renderer.h"
 
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -27,7 +29,9 @@ CpuRenderer::CpuRenderer(const Scene& scene, const CpuAccelerator& accelerator, 
                          ShadingConfig shading)
     : scene_(scene),
       accelerator_(accelerator),
-      threads_(threads ? threads : std::thread::hardware_concurrency()),
+      // oneTBB's count follows the process's CPU affinity (mpirun binds
+      // each rank to its cores); hardware_concurrency() counts the machine's.
+      threads_(threads ? threads : unsigned(tbb::this_task_arena::max_concurrency())),
       shading_(shading),
       table_(makeShadingTable(scene, threads_)),
       epsilon_(secondaryRayEpsilon(scene)),
@@ -45,7 +49,8 @@ void CpuRenderer::shade(const Generation& g, size_t i, const Hit& hit, PathState
   else if (shading_.mode == ShadingMode::Whitted)
     shadeWhitted(scene_, g.epsilon, g.bounces, hit, path, (*g.stacks)[i], table_);
   else
-    shadeAo(scene_, g.epsilon, shading_.aoSamples, g.aoLength, uint32_t(i), hit, path, table_);
+    shadeAo(scene_, g.epsilon, shading_.aoSamples, g.aoLength, uint32_t(g.rows->globalPixel(i, g.width)), hit, path,
+            table_);
 }
 
 // A batch tracer (DACRT) gets the whole generation at once: the rays of all
@@ -247,8 +252,9 @@ uint64_t CpuRenderer::traceRays(std::vector<PathState>& paths, std::vector<Hit>&
   return active;
 }
 
-FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height, int bounces, bool captureHits) {
-  const CameraBasis basis = makeCameraBasis(camera, width, height);
+FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height, int bounces, bool captureHits,
+                                const RowBands& rows) {
+  const CameraBasis basis = makeCameraBasis(camera, width, height, rows);
   const size_t elements = size_t(width) * size_t(height);
   constexpr size_t kGrain = 256;  // pixels per work item: about one image row
 
@@ -283,7 +289,7 @@ FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height,
 
   for (int bounce = 1; bounce <= generations; ++bounce) {
     const Generation g{bounce == 1 && packets ? &basis : nullptr, width, epsilon_, bounce == bounces, bounces,
-                       aoLength_, &stacks, bounce == 1 && captureHits};
+                       aoLength_, &stacks, bounce == 1 && captureHits, &rows};
     // Shading an element without a ray changes nothing (shadeWhitted pops a
     // pending ray only when it has one), so a generation that traced nothing
     // was shaded for nothing and the loop ends as before.

@@ -23,7 +23,9 @@ class CpuRenderer {
   CpuRenderer(const Scene& scene, const CpuAccelerator& accelerator, unsigned threads = 0,
               ShadingConfig shading = {});
 
-  FrameResult render(const CameraSpec& camera, int width, int height, int bounces, bool captureHits);
+  // `rows`: the rows of a taller image this image is (an MPI rank's, render/row_bands.h).
+  FrameResult render(const CameraSpec& camera, int width, int height, int bounces, bool captureHits,
+                     const RowBands& rows = {});
 
  private:
   // What shading an element needs besides its hit and path: one per generation.
@@ -36,6 +38,7 @@ class CpuRenderer {
     float aoLength;
     std::vector<WhittedStack>* stacks;
     bool keepHits;  // packet rows: store the hits (the primary ones, for --hits); else they stay in the tile
+    const RowBands* rows;  // AO's samples follow the whole image's pixel
   };
   void shade(const Generation& g, size_t i, const Hit& hit, PathState& path) const;
   // Starts loading what shading `hit` reads (its shading-table entry and vertex normals).

@@ -32,7 +32,7 @@ class DynamicCpu final : public DynamicRenderer {
   }
   FrameResult render(const CameraSpec& camera, bool captureHits) override {
     if (!renderer_) throw std::logic_error("DynamicRenderer: nextFrame() before render()");
-    return renderer_->render(camera, config_.width, config_.height, config_.bounces, captureHits);
+    return renderer_->render(camera, config_.width, config_.height, config_.bounces, captureHits, config_.rows);
   }
   AccelStats structureStats() const override {
     AccelStats s = accelerator_ ? accelerator_->stats() : AccelStats{.name = name_};
@@ -82,7 +82,7 @@ class DynamicStream final : public DynamicRenderer {
   }
   FrameResult render(const CameraSpec& camera, bool captureHits) override {
     if (!renderer_) throw std::logic_error("DynamicRenderer: nextFrame() before render()");
-    return renderer_->render(camera, config_.bounces, captureHits);
+    return renderer_->render(camera, config_.bounces, captureHits, config_.rows);
   }
   AccelStats structureStats() const override {
     AccelStats s = traversal_ ? traversal_->stats() : AccelStats{.name = name_};

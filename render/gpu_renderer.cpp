@@ -29,6 +29,11 @@ void setRaygenCamera(StreamKernel& raygen, const CameraBasis& basis) {
   raygen.set("uUp", basis.up);
   raygen.set("uTanHalfFov", basis.tanHalfFov);
   raygen.set("uResolution", glm::vec2(basis.width, basis.height));
+  setRowBands(raygen, basis.rows);
+}
+
+void setRowBands(StreamKernel& kernel, const RowBands& rows) {
+  kernel.set("uRowBands", glm::ivec3(rows.bandHeight, rows.ranks, rows.rank));
 }
 
 GpuRenderer::GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width, int height, uint64_t maxPageTexels,
@@ -182,8 +187,8 @@ bool GpuRenderer::fusedPrimaryBounce(const CameraBasis& basis, int bounces, bool
   return true;
 }
 
-FrameResult GpuRenderer::render(const CameraSpec& camera, int bounces, bool captureHits) {
-  const CameraBasis basis = makeCameraBasis(camera, rays_.width(), rays_.height());
+FrameResult GpuRenderer::render(const CameraSpec& camera, int bounces, bool captureHits, const RowBands& rows) {
+  const CameraBasis basis = makeCameraBasis(camera, rays_.width(), rays_.height(), rows);
   FrameResult result;
   result.width = rays_.width();
   result.height = rays_.height();
@@ -209,6 +214,7 @@ FrameResult GpuRenderer::render(const CameraSpec& camera, int bounces, bool capt
   const bool thesis = shading_.mode == ShadingMode::Thesis;
   const int generations = thesis ? bounces : std::numeric_limits<int>::max();
   if (shading_.mode == ShadingMode::Whitted) mixShade_->set("uMaxDepth", bounces);
+  if (mixShade_) setRowBands(*mixShade_, rows);  // AO's samples follow the whole image's pixel
   for (int bounce = first; bounce <= generations; ++bounce) {
     rays_.clearDepth(1.0f);
     const uint64_t active = elements - retireFinished();

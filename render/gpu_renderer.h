@@ -12,6 +12,7 @@
 #include "scenes/scene.h"
 #include "stream/const_input_stream.h"
 #include "stream/inout_stream.h"
+#include "render/row_bands.h"
 #include "stream/storage_buffer.h"
 #include "stream/stream_compaction.h"
 #include "stream/stream_kernel.h"
@@ -22,6 +23,8 @@ struct CameraBasis;
 
 // Sets raygen.frag's camera uniforms: its rays are primaryRay(basis, ...)'s.
 void setRaygenCamera(StreamKernel& raygen, const CameraBasis& basis);
+// kernels_glsl/row_bands.glsl's uniform: which rows of the whole image the stream holds.
+void setRowBands(StreamKernel& kernel, const RowBands& rows);
 
 class GpuRenderer {
  public:
@@ -35,7 +38,8 @@ class GpuRenderer {
   // Renders one frame with `bounces` traces (1 = primary rays only). Timing
   // covers ray generation through the last shading pass, ended by glFinish;
   // reading back primary hits (captureHits) is excluded from it.
-  FrameResult render(const CameraSpec& camera, int bounces, bool captureHits);
+  // `rows`: the rows of a taller image the streams hold (an MPI rank's, render/row_bands.h).
+  FrameResult render(const CameraSpec& camera, int bounces, bool captureHits, const RowBands& rows = {});
 
   InOutStream& rays() { return rays_; }
   // Whether the last frame's primary bounce ran as the structure's fused pass.

@@ -28,7 +28,7 @@ class CpuTracer final : public Renderer {
   CpuTracer(std::unique_ptr<CpuAccelerator> structure, const Scene& scene, const RendererConfig& config)
       : structure_(std::move(structure)), renderer_(scene, *structure_, config.threads, config.shading), config_(config) {}
   FrameResult render(const CameraSpec& camera, bool captureHits) override {
-    return renderer_.render(camera, config_.width, config_.height, config_.bounces, captureHits);
+    return renderer_.render(camera, config_.width, config_.height, config_.bounces, captureHits, config_.rows);
   }
   AccelStats structureStats() const override { return structure_->stats(); }
 
@@ -46,7 +46,7 @@ class StreamTracer final : public Renderer {
                   config.gpu.compact),
         config_(config) {}
   FrameResult render(const CameraSpec& camera, bool captureHits) override {
-    return renderer_.render(camera, config_.bounces, captureHits);
+    return renderer_.render(camera, config_.bounces, captureHits, config_.rows);
   }
   AccelStats structureStats() const override { return structure_->stats(); }
 

@@ -7,6 +7,7 @@
 
 #include "accel/registry.h"
 #include "render/frame_result.h"
+#include "render/row_bands.h"
 #include "render/shading_config.h"
 #include "scenes/scene.h"
 
@@ -22,11 +23,12 @@ class Renderer {
 };
 
 struct RendererConfig {
-  int width = 512, height = 512;
+  int width = 512, height = 512;  // the image traced: with `rows` banded, their local rows
   int bounces = 3;         // traces per path, primary and shadow rays included
   unsigned threads = 0;    // CPU renderers; 0 = all cores
   GpuTraversalConfig gpu;  // build parameters (gpu.build) and the stream's own
   ShadingConfig shading;   // --shading, --ao-samples, --ao-distance
+  RowBands rows;           // an MPI rank's rows of the whole image (render/row_bands.h); default the whole
 };
 
 // Builds `structure` (null for the preview) over `scene` and the renderer

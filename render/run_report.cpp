@@ -79,6 +79,13 @@ nlohmann::json toJson(const RunReport& r) {
   j["shading"] = r.shading;
   j["compact"] = r.compact;
   j["stage"] = orNull(r.stage);
+  // The processes the run was divided among (one without mpirun), each with its host and times.
+  j["ranks"] = r.ranks;
+  nlohmann::json rankRuns = nlohmann::json::array();
+  for (const RankRun& k : r.rankRuns)
+    rankRuns.push_back({{"rank", k.rank}, {"host", k.host}, {"build_ms", k.buildMs}, {"trace_ms", k.traceMs},
+                        {"share", k.share}});
+  j["rank_runs"] = rankRuns;
   // Only in --frames runs, so that a single frame's keys stay as they were.
   if (!r.sequence.empty()) {
     nlohmann::json sequence = nlohmann::json::array();

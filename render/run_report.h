@@ -14,7 +14,7 @@
 
 namespace passtrace {
 
-inline constexpr int kRunReportSchemaVersion = 2;  // 2: schema_version, version, warnings
+inline constexpr int kRunReportSchemaVersion = 3;  // 2: schema_version, version, warnings; 3: ranks, rank_runs
 
 // One frame of a --frames sequence: the scene at `time`, rebuilt and traced.
 struct SequenceFrame {
@@ -30,6 +30,15 @@ struct FrameReport {
   double frameMs = 0;
   uint64_t rays = 0;
   uint64_t passes = 0;
+};
+
+// One MPI rank's part of a run (render/ranks.h); a single process is rank 0 of 1.
+struct RankRun {
+  int rank = 0;
+  std::string host;
+  double buildMs = 0;  // its structure builds (every frame's in a sequence)
+  double traceMs = 0;  // its own renders, summed over its repeats
+  size_t share = 0;    // angles, sequence frames, or a frame's rows it rendered
 };
 
 // --cone runs: per pixel (one cone each) over the angles' fastest repeats.
@@ -72,6 +81,8 @@ struct RunReport {
   std::optional<std::string> stage;  // --stage: fragment or compute (-r 2 only; null elsewhere)
   std::string compact = "off";     // --compact: off, on or always (-r 2 only; off elsewhere)
   std::optional<ConeReport> cone;  // --cone: the JSON's "cone" object
+  int ranks = 1;                   // MPI ranks the run was divided among (render/ranks.h)
+  std::vector<RankRun> rankRuns;   // each rank's host and times, in rank order
   // The picture -o writes (the first angle's, or a sequence's first frame):
   // width*height*3 floats, row 0 the top row. Not in the JSON; empty for
   // --cone and --export runs, which render no image.

@@ -1,6 +1,7 @@
 #include "render/session.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -8,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "accel/milliseconds_since.h"
 #include "passtrace_version.h"
 #include "render/camera.h"
 #include "render/camera_path.h"
@@ -18,6 +20,8 @@
 #include "render/image_output.h"
 #include "render/memory_check.h"
 #include "render/output_files.h"
+#include "render/rank_exchange.h"
+#include "render/ranks.h"
 #include "render/renderer.h"
 #include "scenes/scene_export.h"
 #include "scenes/scene_lights.h"
@@ -67,6 +71,22 @@ std::vector<CameraSpec> cameraViews(const Scene& scene, const RunSettings& o) {
 // "out.png", k -> "out_k.png"
 fs::path numberedPath(const fs::path& path, int k) {
   return path.parent_path() / (path.stem().string() + "_" + std::to_string(k) + path.extension().string());
+}
+
+// One frame traced by every MPI rank, each its own rows (RendererConfig::rows).
+// Rank 0 gets the whole frame, timed from the ranks starting together to the
+// last rank's rows arriving; the others get their band. `traceMs` adds this
+// rank's own render time.
+FrameResult renderBands(Renderer& renderer, const CameraSpec& view, bool captureHits, int fullHeight, double& traceMs) {
+  ranks::agree();
+  const auto start = std::chrono::steady_clock::now();
+  FrameResult band = renderer.render(view, captureHits);
+  traceMs += band.stats.frameMs;
+  const std::vector<std::string> parts = ranks::gatherOnRoot(packBand(band));
+  if (!ranks::isRoot()) return band;
+  FrameResult whole = assembleBands(parts, fullHeight);
+  whole.stats.frameMs = millisecondsSince(start);
+  return whole;
 }
 
 // What the chosen renderer keeps per pixel beyond the memory check's base.
@@ -245,12 +265,16 @@ RunReport renderSequence(const RunSettings& o, Progress& progress) {
   if (o.output.empty()) checkImageFormat(pattern.string());
   const bool keepsStatic = o.dynamic != DynamicStrategy::Rebuild;
   const int firstScaleExponent = scene.scaleExponent;
-  OutputFiles outputs;  // every frame's files appear together, after the last frame
-  double sumMs = 0, sumRays = 0, sumSteps = 0, sumTests = 0, sumPasses = 0;
-  std::optional<FilterStats> sumFilter;
-  RendererConfig config{o.width, o.height, o.bounces, o.threads, o.gpu, o.shading};
+  RendererConfig config{o.width, o.height, o.bounces, o.threads, o.gpu, o.shading, {}};
   std::unique_ptr<DynamicRenderer> dynamic;  // two-trees, merge: kept across frames
-  for (int f = 0; f < o.frames; ++f) {
+  // Under mpirun the frames are dealt out in turn among the ranks (each
+  // frame's structure is built for it alone; two-trees and merge rebuild the
+  // dynamic part from the static tree every frame, so no frame depends on
+  // the one before); rank 0 gathers them.
+  const int rankCount = ranks::count(), rank = ranks::index();
+  RankShare share;
+  share.run = RankRun{rank, ranks::host(), 0, 0, 0};
+  for (int f = rank; f < o.frames; f += rankCount) {
     const float time = o.frames == 1 ? start : start + (end - start) * float(f) / float(o.frames - 1);
     if (f > 0 || time != sceneOptions.time) {
       sceneOptions.time = time;
@@ -269,14 +293,16 @@ RunReport renderSequence(const RunSettings& o, Progress& progress) {
     std::unique_ptr<Renderer> rebuilt;
     Renderer* renderer = nullptr;
     double buildMs = 0;
+    const bool firstOfRank = f == rank;
     if (keepsStatic) {
       if (!dynamic) {
         dynamic = makeDynamicRenderer(o.dynamic, o.renderer, *p.structure, scene, config);
         report.staticBuildMs = dynamic->staticBuildMs();
+        share.run.buildMs += report.staticBuildMs;
       }
       buildMs = dynamic->nextFrame();
       renderer = dynamic.get();
-      if (o.renderer == RendererId::Gpu && f == 0) renderer->render(view, false);  // llvmpipe compiles on the first draw
+      if (o.renderer == RendererId::Gpu && firstOfRank) renderer->render(view, false);  // llvmpipe compiles on the first draw
     } else {
       rebuilt = makeRenderer(o.renderer, p.structure, scene, config);
       renderer = rebuilt.get();
@@ -287,38 +313,62 @@ RunReport renderSequence(const RunSettings& o, Progress& progress) {
     std::vector<HitRecord> hits;
     for (int r = 0; r < o.repeats; ++r) {
       FrameResult frame = renderer->render(view, r == 0 && !o.hits.empty());
+      share.run.traceMs += frame.stats.frameMs;
       if (r == 0) hits = std::move(frame.primaryHits);
       if (r == 0 || frame.stats.frameMs < best.stats.frameMs) best = std::move(frame);
     }
     const fs::path image = sequencePath(pattern, f);
-    outputs.write(image, encodeImage(image, best.width, best.height, best.rgb));
+    share.files.push_back({image.string(), encodeImage(image, best.width, best.height, best.rgb)});
     if (f == 0) report.image = best.rgb;
     if (!o.hits.empty()) {
       // Hit distances in the file's units: 2^-k undoes the rescaling exactly.
       for (HitRecord& h : hits) h.t = std::ldexp(h.t, -scene.scaleExponent);
       const fs::path hitFile = sequencePath(o.hits, f);
-      outputs.write(hitFile, encodeHitBuffer(hitFile, best.width, best.height, hits));
+      share.files.push_back({hitFile.string(), encodeHitBuffer(hitFile, best.width, best.height, hits)});
     }
     const AccelStats stats = renderer->structureStats();
+    if (!keepsStatic) share.run.buildMs += buildMs;
+    ++share.run.share;
     SequenceFrame record;
     record.frame = size_t(f), record.time = time, record.triangles = scene.triangles.size();
     record.movingTriangles = size_t(std::count(scene.moving.begin(), scene.moving.end(), uint8_t(1)));
     record.buildMs = buildMs, record.frameMs = best.stats.frameMs, record.rays = double(best.stats.rays);
     record.totalMs = record.buildMs + record.frameMs;
     record.mraysPerS = record.frameMs > 0 ? record.rays / record.frameMs / 1000.0 : 0.0;
-    report.sequence.push_back(record);
-    report.structure = stats;
-    sumMs += best.stats.frameMs, sumRays += double(best.stats.rays), sumPasses += double(best.stats.passes);
-    sumSteps += double(best.stats.steps), sumTests += double(best.stats.triangleTests);
-    report.maxStepsPerRay = std::max(report.maxStepsPerRay, best.stats.maxStepsPerRay);
-    report.maxTriangleTestsPerRay = std::max(report.maxTriangleTestsPerRay, best.stats.maxTriangleTestsPerRay);
-    if (best.stats.filter) sumFilter = sumFilter.value_or(FilterStats{}) += *best.stats.filter;
+    share.frames.push_back({record, best.stats, stats});
   }
   progress.finish();
+
+  // Every rank's frames to rank 0, merged in frame order: the sums are a single process's.
+  std::vector<SequenceOutcome> frames;
+  OutputFiles outputs;  // every frame's files appear together, after the last frame
+  const std::vector<std::string> parts = ranks::gatherOnRoot(packShare(share));
+  if (!ranks::isRoot()) return report;
+  for (const std::string& bytes : parts) {
+    RankShare s = unpackShare(bytes);
+    frames.insert(frames.end(), s.frames.begin(), s.frames.end());
+    for (FileBytes& file : s.files) outputs.write(file.path, file.bytes);
+    report.rankRuns.push_back(s.run);
+  }
+  std::sort(frames.begin(), frames.end(),
+            [](const SequenceOutcome& a, const SequenceOutcome& b) { return a.record.frame < b.record.frame; });
+  double sumMs = 0, sumRays = 0, sumSteps = 0, sumTests = 0, sumPasses = 0;
+  std::optional<FilterStats> sumFilter;
+  for (const SequenceOutcome& frame : frames) {
+    const FrameStats& best = frame.stats;
+    report.sequence.push_back(frame.record);
+    report.structure = frame.structure;
+    sumMs += best.frameMs, sumRays += double(best.rays), sumPasses += double(best.passes);
+    sumSteps += double(best.steps), sumTests += double(best.triangleTests);
+    report.maxStepsPerRay = std::max(report.maxStepsPerRay, best.maxStepsPerRay);
+    report.maxTriangleTestsPerRay = std::max(report.maxTriangleTestsPerRay, best.maxTriangleTestsPerRay);
+    if (best.filter) sumFilter = sumFilter.value_or(FilterStats{}) += *best.filter;
+  }
   const double n = double(o.frames);
+  report.ranks = rankCount;
   report.dynamic = std::string(dynamicStrategyName(o.dynamic));
   report.scene = scene.name;
-  report.triangles = scene.triangles.size();
+  report.triangles = frames.back().record.triangles;  // the last frame's, as one process reports it
   describeRun(o, p.structure, report);
   report.angles = 1;
   report.rays = sumRays / n, report.frameMs = sumMs / n, report.passes = sumPasses / n;
@@ -341,14 +391,24 @@ RunReport runSession(const RunSettings& o, Progress& progress) {
   // cones, a sequence's rebuilt kernels) is made in the run's stage.
   const StreamStageScope stage(o.renderer == RendererId::Gpu ? o.gpu.stage : StreamStage::Fragment);
   if (o.cone) checkConeRun(o);  // before anything is loaded
-  if (!o.exportPath.empty()) return exportOnly(o, progress);
+  if (!o.exportPath.empty()) return ranks::isRoot() ? exportOnly(o, progress) : RunReport{};
   if (o.frames > 0) return renderSequence(o, progress);
   RunReport report;
   Prepared prepared = prepare(o, report, progress);
   const Structure* structure = prepared.structure;
   // Say so before trying: the procedural scene's size is known before it is
   // made, a file's once it is read.
-  const uint64_t pixels = uint64_t(o.width) * uint64_t(o.height);
+  // Under mpirun one frame is divided among the ranks by rows; not the
+  // preview's rasterizer, which has no rows to divide, nor a batch tracer,
+  // whose counts depend on the rays traced together: rank 0 renders those.
+  const bool banded = ranks::count() > 1 && o.angles == 1 && o.renderer != RendererId::OpenGl &&
+                      !(o.renderer == RendererId::Cpu && structure->cpuTracesBatches);
+  if (banded && o.height < ranks::count())
+    throw std::runtime_error("--height " + std::to_string(o.height) + ": fewer rows than the " +
+                             std::to_string(ranks::count()) + " MPI ranks to divide them among");
+  const uint64_t pixels = uint64_t(o.width) *
+                          uint64_t(banded ? RowBands::interleaved(o.height, ranks::count(), ranks::index()).localHeight()
+                                          : o.height);
   if (o.scene == "spheres")
     checkRunFitsInMemory(o.scene, o.renderer, structure, sphereFieldTriangles(o.sceneOptions.triangles), pixels,
                          extraBytesPerPixel(o));
@@ -365,6 +425,7 @@ RunReport runSession(const RunSettings& o, Progress& progress) {
   placeLights(scene, o.lights, views.front());
   OutputFiles outputs;  // every file of the run appears together, at the end
   if (o.cone) {
+    if (!ranks::isRoot()) return report;  // not divided: rank 0 traces the cones
     traceConeRun(o, *structure, scene, views, report, progress, outputs);
     report.scene = scene.name;
     report.triangles = scene.triangles.size();
@@ -375,57 +436,92 @@ RunReport runSession(const RunSettings& o, Progress& progress) {
     return report;
   }
 
-  if (structure)
-    progress.stage("building " + std::string(structure->name) + " over " + std::to_string(scene.triangles.size()) +
-                   " triangles" + (o.renderer == RendererId::Gpu ? " and uploading it" : ""));
-  RendererConfig config{o.width, o.height, o.bounces, o.threads, o.gpu, o.shading};
-  const std::unique_ptr<Renderer> renderer = makeRenderer(o.renderer, structure, scene, config);
-  if (o.renderer == RendererId::Gpu) {
-    // One untimed frame first: llvmpipe compiles each kernel on its first draw.
-    progress.stage("compiling the kernels");
-    renderer->render(views.front(), false);
+  // Under mpirun (render/ranks.h): one frame's rows, or the angles, divided
+  // among the ranks; rank 0 gathers them and writes everything.
+  const int rankCount = ranks::count(), rank = ranks::index();
+  RendererConfig config{o.width, o.height, o.bounces, o.threads, o.gpu, o.shading, {}};
+  if (banded) config.rows = RowBands::interleaved(o.height, rankCount, rank), config.height = config.rows.localHeight();
+  std::vector<size_t> mine;  // the angles this rank renders
+  for (size_t k = 0; k < views.size(); ++k)
+    if (banded || int(k % size_t(rankCount)) == rank) mine.push_back(k);
+
+  RankShare share;
+  share.run = RankRun{rank, ranks::host(), 0, 0, banded ? size_t(config.height) : mine.size()};
+  std::unique_ptr<Renderer> renderer;
+  if (!mine.empty()) {
+    if (structure)
+      progress.stage("building " + std::string(structure->name) + " over " + std::to_string(scene.triangles.size()) +
+                     " triangles" + (o.renderer == RendererId::Gpu ? " and uploading it" : ""));
+    renderer = makeRenderer(o.renderer, structure, scene, config);
+    share.run.buildMs = renderer->structureStats().buildMs;
+    if (o.renderer == RendererId::Gpu) {
+      // One untimed frame first: llvmpipe compiles each kernel on its first draw.
+      progress.stage("compiling the kernels");
+      renderer->render(views[mine.front()], false);
+    }
   }
 
-  // Per angle, the fastest of the repeats; the frame of angle 0 is kept for
-  // the image and hit outputs.
+  // Per angle, the fastest of the repeats; the frame of angle 0 (rank 0's) is
+  // kept for the image and hit outputs.
   FrameResult first;
-  double sumMs = 0, sumRays = 0;
-  FrameStats total;
-  for (size_t k = 0; k < views.size(); ++k) {
+  for (size_t k : mine) {
     FrameResult best;
     for (int r = 0; r < o.repeats; ++r) {
       progress.frame(k * size_t(o.repeats) + size_t(r), views.size() * size_t(o.repeats));
-      FrameResult frame = renderer->render(views[k], k == 0 && r == 0 && !o.hits.empty());
+      const bool capture = k == 0 && r == 0 && !o.hits.empty();
+      FrameResult frame = banded ? renderBands(*renderer, views[k], capture, o.height, share.run.traceMs)
+                                 : renderer->render(views[k], capture);
+      if (!banded) share.run.traceMs += frame.stats.frameMs;
       if (r == 0 || frame.stats.frameMs < best.stats.frameMs) {
         if (k == 0 && r == 0) first.primaryHits = std::move(frame.primaryHits);
         best = std::move(frame);
       }
     }
-    report.frames.push_back({k, best.stats.frameMs, best.stats.rays, best.stats.passes});
-    sumMs += best.stats.frameMs;
-    sumRays += double(best.stats.rays);
-    total.passes += best.stats.passes;
-    total.steps += best.stats.steps;
-    total.triangleTests += best.stats.triangleTests;
-    total.maxStepsPerRay = std::max(total.maxStepsPerRay, best.stats.maxStepsPerRay);
-    total.maxTriangleTestsPerRay = std::max(total.maxTriangleTestsPerRay, best.stats.maxTriangleTestsPerRay);
-    if (best.stats.filter) total.filter = total.filter.value_or(FilterStats{}) += *best.stats.filter;
+    share.angles.push_back({k, best.stats});
     if (k == 0) {
       first.width = best.width, first.height = best.height, first.rgb = best.rgb, first.stats = best.stats;
       first.steps = best.steps;
     }
     if (o.dumpImages && !o.output.empty()) {
       const fs::path dump = numberedPath(o.output, int(k));
-      outputs.write(dump, encodeImage(dump, best.width, best.height, best.rgb));
+      share.files.push_back({dump.string(), encodeImage(dump, best.width, best.height, best.rgb)});
     }
+    if (banded && !ranks::isRoot()) share.angles.clear(), share.files.clear();  // rank 0 has the whole frame
   }
   progress.finish();
+  report.structure = renderer ? renderer->structureStats() : AccelStats{.name = "none"};
+
+  // Every rank's share to rank 0, merged in angle order: the sums are a single process's.
+  std::vector<RankShare> shares;
+  for (const std::string& bytes : ranks::gatherOnRoot(packShare(share))) shares.push_back(unpackShare(bytes));
+  if (!ranks::isRoot()) return report;
+  std::vector<AngleOutcome> angles;
+  for (RankShare& s : shares) {
+    angles.insert(angles.end(), s.angles.begin(), s.angles.end());
+    for (FileBytes& f : s.files) outputs.write(f.path, f.bytes);
+    report.rankRuns.push_back(s.run);
+  }
+  std::sort(angles.begin(), angles.end(), [](const AngleOutcome& a, const AngleOutcome& b) { return a.angle < b.angle; });
+  double sumMs = 0, sumRays = 0;
+  FrameStats total;
+  for (const AngleOutcome& a : angles) {
+    const FrameStats& best = a.stats;
+    report.frames.push_back({a.angle, best.frameMs, best.rays, best.passes});
+    sumMs += best.frameMs;
+    sumRays += double(best.rays);
+    total.passes += best.passes;
+    total.steps += best.steps;
+    total.triangleTests += best.triangleTests;
+    total.maxStepsPerRay = std::max(total.maxStepsPerRay, best.maxStepsPerRay);
+    total.maxTriangleTestsPerRay = std::max(total.maxTriangleTestsPerRay, best.maxTriangleTestsPerRay);
+    if (best.filter) total.filter = total.filter.value_or(FilterStats{}) += *best.filter;
+  }
 
   const double n = double(views.size());
   report.scene = scene.name;
   report.triangles = scene.triangles.size();
-  report.structure = renderer->structureStats();
   describeRun(o, structure, report);
+  report.ranks = rankCount;
   report.angles = views.size();
   report.rays = sumRays / n;
   report.frameMs = sumMs / n;
