@@ -3,10 +3,12 @@
 # needs (only those missing, so running it again is cheap), then configures
 # build/ and builds the program (build/passtrace) and its kernels — with
 # --python also the Python package (build/python/passtrace) and matplotlib
-# for the report's plots, with --tests everything: the package, the test
-# binaries and measurement tools too.
+# for the report's plots, with --mpi the program with Open MPI (mpirun -np N
+# passtrace, docs/cluster.md), with --tests everything: the package, MPI, the
+# test binaries and measurement tools too.
 #   bash scripts/setup.sh            the program: the README's first command
 #   bash scripts/setup.sh --python   the program and the Python package (PYTHONPATH=build/python)
+#   bash scripts/setup.sh --mpi      the program with Open MPI, and mpi4py for scripts/bench.py
 #   bash scripts/setup.sh --tests    everything: the README's second command
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -14,11 +16,14 @@ target=(--target passtrace)
 # Python's packages (the Python package, its tests, the report's plots) are
 # not needed for the first image, and matplotlib brings 386 MB with it.
 python=()
+# Open MPI: not for the first image either (68 packages with its build tools).
+mpi=(openmpi-bin libopenmpi-dev python3-mpi4py)
 case "${1:-}" in
-  "") ;;
-  --python) target=(--target passtrace _passtrace) python=(pybind11-dev python3-dev python3-numpy python3-matplotlib) ;;
+  "") mpi=() ;;
+  --python) target=(--target passtrace _passtrace) python=(pybind11-dev python3-dev python3-numpy python3-matplotlib) mpi=() ;;
+  --mpi) ;;
   --tests) target=() python=(pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib) ;;
-  *) echo "setup: unknown argument '$1' (expected nothing, --python or --tests)" >&2; exit 2 ;;
+  *) echo "setup: unknown argument '$1' (expected nothing, --python, --mpi or --tests)" >&2; exit 2 ;;
 esac
 
 packages=(
@@ -35,6 +40,7 @@ packages=(
   libembree-dev                                 # Intel Embree 3, the CPU baseline (-r 3; optional)
   python3                                       # the benchmark (scripts/bench.py)
   "${python[@]}"                                # the Python package (python/), its tests, the report's plots
+  "${mpi[@]}"                                   # Open MPI: mpirun -np N passtrace, the benchmark over ranks
 )
 missing=()
 for p in "${packages[@]}"; do
