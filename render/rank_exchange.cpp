@@ -183,6 +183,7 @@ FrameResult assembleBands(const std::vector<std::string>& parts, int fullHeight)
     FrameStats& w = whole.stats;
     w.rays += s.rays, w.steps += s.steps, w.triangleTests += s.triangleTests;
     w.passes = std::max(w.passes, s.passes);
+    w.frameMs = std::max(w.frameMs, s.frameMs);
     w.maxStepsPerRay = std::max(w.maxStepsPerRay, s.maxStepsPerRay);
     w.maxTriangleTestsPerRay = std::max(w.maxTriangleTestsPerRay, s.maxTriangleTestsPerRay);
     if (s.filter) w.filter = w.filter.value_or(FilterStats{}) += *s.filter;

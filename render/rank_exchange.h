@@ -45,8 +45,8 @@ RankShare unpackShare(const std::string& bytes);
 // pixels, per-pixel steps, the primary hits if captured, and its counters.
 std::string packBand(const FrameResult& band);
 // The whole frame from every rank's band, parts[r] from rank r: the counters
-// summed (the most of each maximum; passes the most any rank ran). frameMs
-// is left 0 for the caller's wall clock.
+// summed (the most of each maximum; passes the most any rank ran), frameMs
+// the slowest rank's.
 FrameResult assembleBands(const std::vector<std::string>& parts, int fullHeight);
 
 }  // namespace passtrace

@@ -74,18 +74,23 @@ fs::path numberedPath(const fs::path& path, int k) {
 }
 
 // One frame traced by every MPI rank, each its own rows (RendererConfig::rows).
-// Rank 0 gets the whole frame, timed from the ranks starting together to the
-// last rank's rows arriving; the others get their band. `traceMs` adds this
-// rank's own render time.
+// Rank 0 gets the whole frame; the others get their band. Its frame time is
+// the slowest rank's, timed as one process times a frame (allocation and
+// read-back excluded), plus rank 0 packing its band and gathering and placing
+// every rank's rows. `traceMs` adds this rank's own render time.
 FrameResult renderBands(Renderer& renderer, const CameraSpec& view, bool captureHits, int fullHeight, double& traceMs) {
-  ranks::agree();
-  const auto start = std::chrono::steady_clock::now();
+  ranks::agree();  // the ranks start together
   FrameResult band = renderer.render(view, captureHits);
   traceMs += band.stats.frameMs;
-  const std::vector<std::string> parts = ranks::gatherOnRoot(packBand(band));
+  const auto packStart = std::chrono::steady_clock::now();
+  const std::string packed = packBand(band);
+  const double packMs = millisecondsSince(packStart);
+  ranks::agree();  // every band is ready: the exchange starts
+  const auto exchangeStart = std::chrono::steady_clock::now();
+  const std::vector<std::string> parts = ranks::gatherOnRoot(packed);
   if (!ranks::isRoot()) return band;
   FrameResult whole = assembleBands(parts, fullHeight);
-  whole.stats.frameMs = millisecondsSince(start);
+  whole.stats.frameMs += packMs + millisecondsSince(exchangeStart);
   return whole;
 }
 

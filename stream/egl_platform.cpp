@@ -1,6 +1,8 @@
 #include "stream/egl_platform.h"
 
+#include <cstdlib>
 #include <cstring>
+#include <stdexcept>
 #include <vector>
 
 #include <EGL/egl.h>
@@ -75,8 +77,8 @@ bool makeContext(EGLDisplay display, EglHandle& h, std::string& error) {
 }
 
 // EGL devices, hardware ones first (Mesa marks its software device).
-std::vector<EGLDeviceEXT> listDevices(bool& anyHardware) {
-  anyHardware = false;
+std::vector<EGLDeviceEXT> listDevices(size_t& hardwareCount) {
+  hardwareCount = 0;
   auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
   auto queryString = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
   if (!queryDevices || !queryString) return {};
@@ -88,9 +90,25 @@ std::vector<EGLDeviceEXT> listDevices(bool& anyHardware) {
     const bool isSoftware = hasExtension(queryString(devices[i], EGL_EXTENSIONS), "EGL_MESA_device_software");
     (isSoftware ? software : hardware).push_back(devices[i]);
   }
-  anyHardware = !hardware.empty();
+  hardwareCount = hardware.size();
   hardware.insert(hardware.end(), software.begin(), software.end());
   return hardware;
+}
+
+// The hardware device this process uses (egl_platform.h), of `count`; the
+// variable is read only where there are hardware devices to choose from.
+size_t chosenHardwareDevice(size_t count) {
+  if (const char* given = std::getenv("PASSTRACE_EGL_DEVICE")) {
+    char* end = nullptr;
+    const long k = std::strtol(given, &end, 10);
+    if (end == given || *end != '\0' || k < 0 || size_t(k) >= count)
+      throw std::runtime_error("PASSTRACE_EGL_DEVICE=" + std::string(given) + ": not one of the " +
+                               std::to_string(count) + " hardware EGL devices (0 to " + std::to_string(count - 1) + ")");
+    return size_t(k);
+  }
+  for (const char* name : {"OMPI_COMM_WORLD_LOCAL_RANK", "SLURM_LOCALID", "MPI_LOCALRANKID"})
+    if (const char* local = std::getenv(name)) return size_t(std::strtoul(local, nullptr, 10)) % count;
+  return 0;
 }
 
 bool tryDisplay(EGLDisplay display, const char* backend, PlatformContext& out, std::string& error) {
@@ -116,8 +134,11 @@ bool createEglContext(PlatformContext& out, std::string& error) {
     error = "EGL lacks eglGetPlatformDisplayEXT";
     return false;
   }
-  bool anyHardware = false;
-  const std::vector<EGLDeviceEXT> devices = listDevices(anyHardware);
+  size_t hardwareCount = 0;
+  std::vector<EGLDeviceEXT> devices = listDevices(hardwareCount);
+  const bool anyHardware = hardwareCount > 0;
+  // The chosen device first; the others stay fallbacks.
+  if (anyHardware) std::swap(devices[0], devices[chosenHardwareDevice(hardwareCount)]);
   if (anyHardware &&
       tryDisplay(getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices.front(), nullptr), "egl-device", out, error))
     return true;
