@@ -9,11 +9,7 @@
 #include <thread>
 
 #ifdef PASSTRACE_WITH_MPI
-// MPI's C interface only: mpi.h would otherwise pull in the removed C++
-// bindings, which need a library passtrace does not link.
-#define OMPI_SKIP_MPICXX 1
-#define MPICH_SKIP_MPICXX 1
-#include <mpi.h>
+#include <mpi.h>  // its C interface (render/CMakeLists.txt: MPI_CXX_SKIP_MPICXX)
 #endif
 
 namespace passtrace::ranks {

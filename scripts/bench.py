@@ -37,7 +37,9 @@ The structures come from `passtrace --list --json` (the binary given by
 Build flags follow the structure's family (build_flags): -g for the grids,
 -d for the kd-trees, nothing else. Ctrl-C stops after writing the report from
 the runs that finished. Timings on shared machines vary by 20-50 % from run to
-run: compare ratios taken in one run.
+run: compare ratios taken in one run. `mpirun -np N python3 scripts/bench.py ...`
+spreads the runs, the seed sections' too, over N ranks (scripts/bench_ranks.py;
+one rank per node for timings).
 """
 import argparse
 import csv
@@ -54,6 +56,7 @@ import time
 
 REPO = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+import bench_ranks  # noqa: E402
 import passtrace_registry  # noqa: E402
 from bench_report import write_atomically  # noqa: E402
 
@@ -388,7 +391,8 @@ class Runner:
         tmp_json.unlink(missing_ok=True)
         cmd = self.command(args, tmp_json, extra)
         start = time.monotonic()
-        proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                env=bench_ranks.child_env())
         try:
             deadline = start + self.timeout
             while True:
@@ -412,7 +416,7 @@ class Runner:
         rec = dict(meta)
         rec.update({"args": args, "command": shown, "wall_s": round(wall, 3),
                     "finished_at": datetime.datetime.now().isoformat(timespec="seconds"),
-                    "returncode": proc.returncode})
+                    "returncode": proc.returncode, "host": bench_ranks.HOST, "rank": bench_ranks.rank()})
         result = read_json(tmp_json) if proc.returncode == 0 else None
         if result is not None:
             rec["status"] = "ok"
@@ -476,7 +480,7 @@ def machine_block(runs, binary):
 
     def cmd(*c):
         try:
-            r = subprocess.run(c, capture_output=True, text=True, cwd=REPO, timeout=30)
+            r = subprocess.run(c, capture_output=True, text=True, cwd=REPO, timeout=30, env=bench_ranks.child_env())
             return r.stdout.strip() if r.returncode == 0 else None
         except (OSError, subprocess.SubprocessError):
             return None
@@ -534,28 +538,48 @@ def ensure_matplotlib():
 
 def run_jobs(jobs, runner, report_only, label):
     """The seed sections' driver: runs each (kind, meta, args, key) job that has
-    no finished record in runner.runs_dir (--report-only: reads them only).
+    no finished record in runner.runs_dir (--report-only: reads them only), over
+    the MPI ranks when there are several (bench_ranks).
     Returns [(meta, record)] of the jobs with a record, and the seconds taken;
     Ctrl-C stops early with what finished."""
     started = time.monotonic()
-    records = []
+    found = {}  # job index -> record
+
+    def begin(i, where):
+        log(f"[{i + 1}/{len(jobs)}] {jobs[i][3]}{where} ... elapsed {fmt_s(time.monotonic() - started)}")
+
+    def end(i, rec):
+        found[i] = rec
+        if rec["status"] != "ok":
+            log(f"      {jobs[i][3] + ' ' if pool.ranks > 1 else ''}failed: {rec['error']}")
+
+    pool = bench_ranks.Pool(runner, begin, end)
     try:
         for i, (_, meta, run_args, key) in enumerate(jobs):
             path = runner.runs_dir / f"{key}.json"
             rec = read_json(path) if report_only else runner.finished(path, run_args)
             if rec is None and not report_only:
-                log(f"[{i + 1}/{len(jobs)}] {key} ... elapsed {fmt_s(time.monotonic() - started)}")
-                rec = runner.execute(meta, run_args, path, (), key)
-                if rec["status"] != "ok":
-                    log(f"      failed: {rec['error']}")
-            if rec is not None:
-                records.append((meta, rec))
+                pool.submit(i, (meta, run_args, path, (), key))
+            elif rec is not None:
+                found[i] = rec
+        pool.finish()
     except KeyboardInterrupt:
         log(f"bench {label}: interrupted; writing the report from the runs that finished")
+    records = [(jobs[i][1], found[i]) for i in sorted(found)]
     for _, rec in records:
         if rec.get("command"):
             rec["command"] = shown_command(rec["command"])
     return records, time.monotonic() - started
+
+
+def host_counts(records):
+    """{host: runs} of the records that name their host (those written before
+    the MPI ranks do not)."""
+    counts = {}
+    for rec in records:
+        if rec.get("host"):
+            counts[rec["host"]] = counts.get(rec["host"], 0) + 1
+    return dict(sorted(counts.items()))
 
 
 def section_results(command, wall_s, parameters, skipped, missing, records, binary):
@@ -565,6 +589,7 @@ def section_results(command, wall_s, parameters, skipped, missing, records, bina
         "command": command, "wall_s": round(wall_s, 1), "parameters": parameters,
         "skipped": skipped, "missing": missing,
         "machine": machine_block([r for _, r in records], binary),
+        "ranks": bench_ranks.size(), "hosts": host_counts([r for _, r in records]),
         "runs_ok": sum(1 for _, r in records if r.get("status") == "ok"),
         "runs_failed": sum(1 for _, r in records if r.get("status") == "error"),
         "runs": [dict(r, meta=m) for m, r in records],
@@ -583,6 +608,12 @@ def main_section(args, argv, section):
     bart = bart_dir(args.bart_dir)
     command = shown_command(["python3", "scripts/bench.py"] + (argv if argv is not None else sys.argv[1:]))
     status = module.main(args, binary, registry, out, bart, bart_present(bart), sys.modules[__name__], command)
+    import bench_report
+    results = read_json(out / "results.json") or {}
+    note = bench_report.ranks_note(results.get("ranks", 1), results.get("hosts", {}), results.get("runs", []))
+    if note and (out / "REPORT.md").exists():  # the sections' reports share this paragraph
+        text = (out / "REPORT.md").read_text().rstrip("\n")
+        write_atomically(out / "REPORT.md", f"{text}\n\n## Ranks\n\n{note}\n")
     if args.merge_into:
         merge_report(args.merge_into, out / "REPORT.md", args.merge_title or f"Runs in {out.name}")
         log(f"bench: merged {shown_path(out / 'REPORT.md')} into {args.merge_into}")
@@ -630,9 +661,18 @@ def main(argv=None):
     args = parser.parse_args(argv)
     if args.scenes_dir:  # every passtrace this run starts finds them there
         os.environ["PASSTRACE_SCENES_DIR"] = str(pathlib.Path(args.scenes_dir).resolve())
-    if args.mode in SECTIONS:
-        return main_section(args, argv, args.mode)
+    if bench_ranks.rank() > 0:  # under mpirun: runs what rank 0 hands out
+        return bench_ranks.serve()
+    try:
+        if args.mode in SECTIONS:
+            return main_section(args, argv, args.mode)
+        return main_matrix(args, argv, parser)
+    finally:
+        bench_ranks.close()  # however rank 0 ends, the other ranks stop
 
+
+def main_matrix(args, argv, parser):
+    """--quick, --full, --tiny: the matrix of (scene, renderer, structure) runs, then the report."""
     if args.out:
         out = pathlib.Path(args.out)
     elif MODES[args.mode]["out"]:
@@ -664,11 +704,33 @@ def main(argv=None):
     n_runs = sum(1 for j in jobs if j[0] == "run")
     log(f"bench: {plan.mode} mode, {n_runs} runs + {len(jobs) - n_runs} heat maps into {out}; "
         f"{plan.size}x{plan.size}, -m {plan.repeats}, -n {plan.angles} on Cows/Bunny")
+
+    def label(job):
+        kind, meta = job[:2]
+        return (f"{meta['scene']} {meta['renderer'].upper()} {meta['structure']}"
+                f"{' heat map' if kind == 'heat' else ''}, {meta['angles']} angle(s)")
+
+    def begin(i, where):
+        remaining = sum(estimate(j, executed) for j in jobs[i:]) / pool.ranks  # the ranks share them
+        log(f"[{i + 1}/{len(jobs)}] {label(jobs[i])}{where} ... elapsed {fmt_s(time.monotonic() - started)}, "
+            f"about {fmt_s(remaining)} left")
+
+    def end(i, rec):
+        meta = jobs[i][1]
+        records[meta["key"]] = rec
+        executed.append({"scene": meta["scene"], "renderer": meta["renderer"], "wall_s": rec["wall_s"]})
+        head = f"{label(jobs[i])}: " if pool.ranks > 1 else ""  # the lines of several ranks interleave
+        if rec["status"] == "ok":
+            r = rec["result"]
+            log(f"      {head}{r['frame_ms']:.1f} ms/frame, {r['mrays_per_s']:.3f} Mrays/s, build "
+                f"{r['build_ms']:.0f} ms ({rec['wall_s']:.1f} s)")
+        else:
+            log(f"      {head}failed ({rec['wall_s']:.1f} s): {rec['error']}")
+
+    pool = bench_ranks.Pool(runner, begin, end)
     try:
         for i, job in enumerate(jobs):
             kind, meta, run_args, record_path, extra, extra_files = job
-            label = (f"{meta['scene']} {meta['renderer'].upper()} {meta['structure']}"
-                     f"{' heat map' if kind == 'heat' else ''}, {meta['angles']} angle(s)")
             if args.report_only:
                 rec = read_json(record_path)
                 if rec and rec.get("args") == run_args:
@@ -676,22 +738,12 @@ def main(argv=None):
                 continue
             rec = runner.finished(record_path, run_args, extra_files)
             if rec is not None:
-                log(f"[{i + 1}/{len(jobs)}] {label}: skip (finished earlier, {rec['wall_s']:.1f} s; --force reruns)")
+                log(f"[{i + 1}/{len(jobs)}] {label(job)}: skip (finished earlier, {rec['wall_s']:.1f} s; "
+                    "--force reruns)")
                 records[meta["key"]] = rec
                 continue
-            pending = jobs[i:]
-            remaining = sum(estimate(j, executed) for j in pending)
-            log(f"[{i + 1}/{len(jobs)}] {label} ... elapsed {fmt_s(time.monotonic() - started)}, "
-                f"about {fmt_s(remaining)} left")
-            rec = runner.execute(meta, run_args, record_path, extra, label)
-            records[meta["key"]] = rec
-            executed.append({"scene": meta["scene"], "renderer": meta["renderer"], "wall_s": rec["wall_s"]})
-            if rec["status"] == "ok":
-                r = rec["result"]
-                log(f"      {r['frame_ms']:.1f} ms/frame, {r['mrays_per_s']:.3f} Mrays/s, build "
-                    f"{r['build_ms']:.0f} ms ({rec['wall_s']:.1f} s)")
-            else:
-                log(f"      failed ({rec['wall_s']:.1f} s): {rec['error']}")
+            pool.submit(i, (meta, run_args, record_path, extra, label(job)))
+        pool.finish()
     except KeyboardInterrupt:
         interrupted = True
         log("bench: interrupted; writing the report from the runs that finished")
@@ -724,6 +776,8 @@ def main(argv=None):
         "runs_executed": previous.get("runs_executed", len(executed)),
         "runs_skipped": previous.get("runs_skipped", len(records) - len(executed)),
         "runs_wall_s": round(runs_wall, 1),
+        "ranks": previous.get("ranks", bench_ranks.size()),
+        "hosts": host_counts(records.values()),
         "parameters": plan.parameters(),
         "bart_dir": shown_path(bart), "skipped_scenes": skipped_scenes,
         "machine": machine,

@@ -127,6 +127,22 @@ def write_atomically(path, text):
         raise
 
 
+def ranks_note(ranks, hosts, runs):
+    """Where the runs ran and what that means for their timings, when more than
+    one MPI rank ran them (in this invocation or an earlier one); else None."""
+    if ranks <= 1 and len(hosts) <= 1 and not any(r.get("rank") for r in runs):
+        return None
+    listing = ", ".join(f"`{h}` ({n} run{'s' if n != 1 else ''})" for h, n in hosts.items()) or "unknown hosts"
+    return (f"This invocation had {ranks} MPI rank{'s' if ranks != 1 else ''}; the runs ran on {listing}. Ranks "
+            "that share a machine perturb each other's timings (they compete for its cores, caches and memory "
+            "bandwidth): for timings, run one rank per node (Open MPI: `mpirun --map-by ppr:1:node`).")
+
+
+def placed(run):
+    """A run's host and rank, as the table of all runs shows them."""
+    return f"{run['host']} / {run.get('rank', 0)}" if run.get("host") else NA
+
+
 def write_csv(path, runs, by):
     with io.StringIO(newline="") as f:
         w = csv.DictWriter(f, fieldnames=CSV_FIELDS)
@@ -241,6 +257,10 @@ def write_report(out, results, modes, scene_defaults, plots):
     L.append(f"- **Machine:** {machine['cpu']}, {machine['cores']} cores, {machine['memory_gib']} GiB; "
              f"{machine['os']}; GL: {machine['gl_renderer']} ({machine['gl_backend']}); "
              f"git {str(machine['git_commit'])[:12]}{' (dirty tree)' if machine['git_dirty'] else ''}.")
+    placement = ranks_note(results.get("ranks", 1), results.get("hosts", {}),
+                           list(runs) + list(results.get("heatmaps", [])))
+    if placement:
+        L.append(f"- **Ranks:** {placement} The table of all runs names each run's host and rank.")
     if results.get("interrupted"):
         L.append("- **Interrupted:** this report covers only the runs that finished; rerun the same command to "
                  "complete it (finished runs are skipped).")
@@ -432,9 +452,11 @@ def write_report(out, results, modes, scene_defaults, plots):
                      num(r.get("frame_ms")), f"{int(r['rays']):,}" if r.get("rays") is not None else NA,
                      num(r.get("mrays_per_s"), 3), num(ratio, 2), num(r.get("passes")), num(r.get("build_ms"), 0),
                      num(r.get("accel_floats_per_triangle"), 2), num(r.get("steps_per_ray")),
-                     num(r.get("triangle_tests_per_ray")), num(run.get("wall_s"))])
+                     num(r.get("triangle_tests_per_ray")), num(run.get("wall_s"))]
+                    + ([placed(run)] if placement else []))
     L.append(md_table(["scene", "renderer", "structure", "status", "frame ms", "rays", "Mrays/s", "÷ Embree",
-                       "passes", "build ms", "floats/tri", "steps/ray", "tests/ray", "wall s"], rows))
+                       "passes", "build ms", "floats/tri", "steps/ray", "tests/ray", "wall s"] +
+                      (["host / rank"] if placement else []), rows))
     L.append("")
     errors = [r for r in runs if r["status"] == "error"]
     if errors:

@@ -24,6 +24,7 @@ lacks are listed as missing, not run.
 """
 import statistics
 
+import bench_ranks
 from report_tables import field, md_table, num, result, verdict
 from bench_report import write_atomically
 from passtrace_registry import scene_available
@@ -261,7 +262,8 @@ def main(args, binary, registry, out, bart, bart_ok, bench, command):
     unknown = [s for s in scenes if s not in dict(SCENES)]
     if unknown:
         raise SystemExit(f"bench --rt2: unknown scene {unknown[0]!r} (expected {', '.join(dict(SCENES))})")
-    help_text = subprocess.run([str(binary), "--help"], capture_output=True, text=True).stdout
+    help_text = subprocess.run([str(binary), "--help"], capture_output=True, text=True,
+                               env=bench_ranks.child_env()).stdout
     plan = Plan(args.size or 512, args.repeats or 3, registry, scenes, bart_ok, "--shading" in help_text)
     runner = bench.Runner(binary, bart, out, args.timeout or 1800, args.force)
     records, wall_s = bench.run_jobs(plan.jobs, runner, args.report_only, "--rt2")

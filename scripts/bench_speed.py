@@ -35,6 +35,7 @@ import json
 import os
 import pathlib
 import subprocess
+import bench_ranks
 import bench_stages
 from bench_report import write_atomically
 
@@ -88,7 +89,8 @@ def measure_tool(binary, name):
 def run_lines(cmd, env=None, timeout=900):
     """The JSON lines a measurement tool prints, or None (with the reason) when it fails."""
     try:
-        proc = subprocess.run([str(c) for c in cmd], capture_output=True, text=True, timeout=timeout, env=env)
+        proc = subprocess.run([str(c) for c in cmd], capture_output=True, text=True, timeout=timeout,
+                              env=bench_ranks.child_env(env))
     except (OSError, subprocess.TimeoutExpired) as e:
         return None, str(e)
     if proc.returncode != 0:

@@ -12,6 +12,8 @@ import pathlib
 import subprocess
 import tempfile
 
+import bench_ranks
+
 # The rows the stage comparison runs: the fastest stream rows of the speed
 # report (bvh-octant-fused, bvh-octant, kk-bvh, gs-bvh on the bunny).
 STAGE_ROWS = ("bvh-octant-fused", "bvh-octant", "kk-bvh", "gs-bvh")
@@ -33,14 +35,16 @@ def measure(binary, scene, size, repeats, registry_rows, log):
                 for stage in (STAGES if k % 2 == 0 else STAGES[::-1]):  # who goes first alternates
                     cmd = [str(binary), "-r", "2", "-a", row, "-s", scene, "-w", str(size), "-b", "1", "-m",
                            str(repeats), "--stage", stage, "--json", str(report), "-q"]
-                    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=900)
+                    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=900,
+                                          env=bench_ranks.child_env())
                     if proc.returncode != 0:
                         out["errors"].append(f"{row} --stage {stage}: {proc.stderr.strip().splitlines()[-1:]}")
                         continue
                     out["runs"][row][stage].append(json.loads(report.read_text())["frame_ms"])
     probe = pathlib.Path(binary).parent / "tests" / "measure" / "measure_sm_probe"
     if probe.exists():
-        proc = subprocess.run([str(probe), "64"], capture_output=True, text=True, timeout=120)
+        proc = subprocess.run([str(probe), "64"], capture_output=True, text=True, timeout=120,
+                              env=bench_ranks.child_env())
         out["probe"] = json.loads(proc.stdout) if proc.returncode == 0 else {"error": proc.stderr.strip()}
     return out
 

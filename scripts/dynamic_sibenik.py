@@ -18,6 +18,8 @@ import pathlib
 import struct
 import subprocess
 
+import bench_ranks
+
 OBJECT_TRIANGLES = 6656
 SLICES, STACKS, RADIUS = 64, 53, 1.2
 # In the exported file's units (metres): the nave runs along x, the floor is near y = -13.
@@ -65,7 +67,7 @@ def make(binary, objects, out_dir):
     static = out_dir / "sibenik_static.gltf"
     if not static.exists():
         subprocess.run([str(binary), "-s", "sibenik", "--export", str(static), "-q"], check=True,
-                       capture_output=True, text=True)
+                       capture_output=True, text=True, env=bench_ranks.child_env())
     doc = json.loads(static.read_text())
     tris = sphere_triangles()
     positions = [c for t in tris for p in t for c in p]

@@ -6,11 +6,14 @@ The JSON is one object: `version`, `renderers` [{name, id}], `accelerators`
 import json
 import subprocess
 
+import bench_ranks
+
 
 def load(binary):
     """Runs `BINARY --list --json`; exits with one message when it cannot."""
     try:
-        proc = subprocess.run([str(binary), "--list", "--json"], capture_output=True, text=True, timeout=60)
+        proc = subprocess.run([str(binary), "--list", "--json"], capture_output=True, text=True, timeout=60,
+                              env=bench_ranks.child_env())
     except OSError as e:
         raise SystemExit(f"{binary} --list --json: {e}")
     if proc.returncode != 0:

@@ -17,19 +17,8 @@ import tempfile
 REPO = pathlib.Path(__file__).resolve().parents[2]
 BENCH = REPO / "scripts" / "bench.py"
 sys.path.insert(0, str(REPO / "scripts"))
-
-passed, failed = 0, 0
-
-
-def check(condition, what):
-    global passed, failed
-    if condition:
-        passed += 1
-        print(f"ok: {what}")
-    else:
-        failed += 1
-        print(f"FAILED: {what}")
-    return condition
+sys.path.insert(0, str(REPO / "tests"))
+from script_checks import check, summary  # noqa: E402
 
 
 def run_bench(binary, out, *extra):
@@ -241,8 +230,7 @@ def main():
         check(all(r["result"]["cone"]["nodes_per_pixel"] > 0 for r in results.get("runs", [])
                   if r.get("status") == "ok" and r["meta"]["kind"] == "cone"), "every cone run reports its nodes")
 
-    print(f"{passed} passed, {failed} failed")
-    return 1 if failed else 0
+    return summary()
 
 
 if __name__ == "__main__":
