@@ -132,7 +132,7 @@ std::vector<Structure> makeRows() {
        .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeDacrtCpu,
        .memory = {48, 0}, .reads = {P::DacrtRLimit, P::DacrtPLimit, P::DacrtCones, P::DacrtSplit},
-       .cpuTracesBatches = true},
+       .cpuRayGrouping = RayGrouping::Generation},
       // Seed 002: kd-restart's tree with ropes (Popov et al. 2007). Memory measured for kd-ropes and kd-compact
       // in one session in which kd-stack measured 693 bytes per triangle on the CPU.
       {.name = "kd-ropes", .family = "kd",
@@ -180,7 +180,7 @@ std::vector<Structure> makeRows() {
        .description = "bvh8 traced in packets of 32 rays (8x4 pixels) for primary and shadow rays",
        .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeBvh8PacketCpu,
-       .memory = {211, 0}, .reads = {P::Bvh8Builder}},
+       .memory = {211, 0}, .reads = {P::Bvh8Builder}, .cpuRayGrouping = RayGrouping::Tiles},
       // Issue 17 item 3: kk-bvh's kernel over eight child orders (Hachisuka's MTBVH, one order per octant) of
       // bvh-stack's tree.
       {.name = "bvh-octant", .family = "bvh",
@@ -219,6 +219,15 @@ std::string_view rendererName(RendererId renderer) {
     case Cpu: return "cpu";
     case Gpu: return "gpu";
     case Embree: return "embree";
+  }
+  return "?";
+}
+
+std::string_view rayGroupingName(RayGrouping grouping) {
+  switch (grouping) {
+    case RayGrouping::None: return "none";
+    case RayGrouping::Tiles: return "tiles";
+    case RayGrouping::Generation: return "generation";
   }
   return "?";
 }

@@ -94,6 +94,9 @@ struct MemoryModel {
 using CpuFactory = std::unique_ptr<CpuAccelerator> (*)(std::span<const Triangle>, const AccelBuildConfig&);
 using StreamFactory = std::unique_ptr<GpuTraversal> (*)(std::span<const Triangle>, const GpuTraversalConfig&);
 
+enum class RayGrouping { None, Tiles, Generation };
+std::string_view rayGroupingName(RayGrouping grouping);  // "none", "tiles", "generation"
+
 struct Structure {
   std::string_view name;         // -a NAME; also AccelStats::name of what it builds
   std::string_view family;       // its folder: accel/<family>/, kernels_glsl/<family>/
@@ -117,10 +120,13 @@ struct Structure {
   // DACRT). True: the CPU traversal (-r 1) counts one step per node or cell
   // visited and tests a leaf's triangles inside that step, so node tests = steps.
   bool cpuStepsVisitNodes = false;
-  // The CPU traversal traces each generation of rays as one batch (DACRT):
-  // a ray's counts depend on the rays traced with it, so an MPI run leaves a
-  // frame whole rather than dividing its rows among the ranks (render/session.cpp).
-  bool cpuTracesBatches = false;
+  // How the CPU traversal (-r 1) groups rays, which a ray's counts then depend
+  // on: None, ray by ray; Tiles, packets of an image tile's pixels (counts
+  // differ for rays grouped otherwise, e.g. the Python module's consecutive
+  // rays); Generation, each generation as one batch (DACRT: an MPI run leaves
+  // its frame whole rather than dividing its rows, render/session.cpp).
+  // --list --json's "cpu_ray_groups".
+  RayGrouping cpuRayGrouping = RayGrouping::None;
   // --cone: the structure's cone query on the CPU renderer (accel/cone/); null = none.
   ConeFactory cone = nullptr;
   // --cone with -r 2: the kd-tree the stream cone kernel walks (render/gpu_cone_tracer.h); null = none.

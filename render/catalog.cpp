@@ -47,6 +47,8 @@ nlohmann::json catalogJson(const std::filesystem::path& realScenesDir) {
     accelerators.push_back({{"name", s.name},
                             {"renderers", rendererNames(s)},
                             {"number", s.number ? nlohmann::json(*s.number) : nlohmann::json(nullptr)},
+                            {"cpu_ray_groups", s.runsOn(RendererId::Cpu) ? nlohmann::json(rayGroupingName(s.cpuRayGrouping))
+                                                                          : nlohmann::json(nullptr)},
                             {"description", s.description}});
   nlohmann::json scenes = nlohmann::json::array();
   for (const auto& [name, number] : sceneRows(realScenesDir)) scenes.push_back({{"name", name}, {"number", number}});

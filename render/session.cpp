@@ -407,7 +407,7 @@ RunReport runSession(const RunSettings& o, Progress& progress) {
   // preview's rasterizer, which has no rows to divide, nor a batch tracer,
   // whose counts depend on the rays traced together: rank 0 renders those.
   const bool banded = ranks::count() > 1 && o.angles == 1 && o.renderer != RendererId::OpenGl &&
-                      !(o.renderer == RendererId::Cpu && structure->cpuTracesBatches);
+                      !(o.renderer == RendererId::Cpu && structure->cpuRayGrouping == RayGrouping::Generation);
   if (banded && o.height < ranks::count())
     throw std::runtime_error("--height " + std::to_string(o.height) + ": fewer rows than the " +
                              std::to_string(ranks::count()) + " MPI ranks to divide them among");

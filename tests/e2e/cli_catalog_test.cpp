@@ -55,7 +55,7 @@ TEST_F(Cli, ListJsonFollowsTheContractAndTheRegistry) {
     const Structure& s = structures()[i];
     const nlohmann::json& a = accelerators[i];
     SCOPED_TRACE(std::string(s.name));
-    EXPECT_EQ(keysOf(a), (std::set<std::string>{"name", "renderers", "number", "description"}));
+    EXPECT_EQ(keysOf(a), (std::set<std::string>{"name", "renderers", "number", "cpu_ray_groups", "description"}));
     EXPECT_EQ(a["name"], s.name);
     nlohmann::json on = nlohmann::json::array();
     for (RendererId renderer : kRenderers)
@@ -63,6 +63,8 @@ TEST_F(Cli, ListJsonFollowsTheContractAndTheRegistry) {
     EXPECT_EQ(a["renderers"], on);
     EXPECT_EQ(a["number"], s.number ? nlohmann::json(*s.number) : nlohmann::json(nullptr));
     EXPECT_EQ(a["description"], s.description);
+    EXPECT_EQ(a["cpu_ray_groups"], s.runsOn(RendererId::Cpu) ? nlohmann::json(rayGroupingName(s.cpuRayGrouping))
+                                                              : nlohmann::json(nullptr));
   }
 
   // The built-in scenes by name and thesis number, and the procedural one; no real scene.

@@ -101,6 +101,23 @@ TEST_F(MpiCli, OneFrameDividedByRowsWritesOneProcesssBytes) {
     expectSameOutputs("-s bunny " + row + outs, files);
 }
 
+// A batch tracer's counts depend on the rays traced together (the registry's
+// cpuRayGrouping): its single frame stays whole on rank 0. (Its counters also
+// follow the CPUs a process may use, which mpirun binds: only the image and
+// hits are compared.)
+TEST_F(MpiCli, ABatchTracersFrameStaysWholeOnRankZero) {
+  const std::string args = " -s bunny -r 1 -a dacrt -b 2 --width 64 --height 48";
+  ASSERT_EQ(run(args + " -o " + path("one.png") + " --hits " + path("one.exr")).status, 0);
+  const RunResult two = runRanks(2, args + " -o " + path("two.png") + " --hits " + path("two.exr") + " --json " +
+                                        path("two.json"));
+  ASSERT_EQ(two.status, 0) << two.err;
+  EXPECT_TRUE(slurp(path("one.png")) == slurp(path("two.png")));
+  EXPECT_TRUE(slurp(path("one.exr")) == slurp(path("two.exr")));
+  const nlohmann::json j = nlohmann::json::parse(slurp(path("two.json")));
+  EXPECT_EQ(j["rank_runs"][0]["share"], 1);
+  EXPECT_EQ(j["rank_runs"][1]["share"], 0);
+}
+
 // -n 4 -p: the angles dealt out in turn; every angle's image and the sums.
 TEST_F(MpiCli, AnglesDividedWriteOneProcesssImages) {
   expectSameOutputs("-s bunny -r 1 -a bvh8 -n 4 -p -w 64 -o {}i.png --json {}j.json",
