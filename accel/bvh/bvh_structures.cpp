@@ -83,13 +83,14 @@ private:
   TriangleTest test_;
 };
 
-struct OctantBuild {
-  OctantSequences sequences;
+// bvh-octant's tree and its statistics; the sequences are flattened by the
+// CPU row (eight apart) and the stream rows (back to back) each their way.
+struct OctantTree {
+  Bvh bvh;
   AccelStats stats;
 };
 
-OctantBuild buildOctantSequences(std::span<const Triangle> tris, const AccelBuildConfig& config) {
-  const auto start = std::chrono::steady_clock::now();
+OctantTree buildOctantTree(std::span<const Triangle> tris, const AccelBuildConfig& config) {
   // bvh-stack's builder, but with leaves of one triangle allowed: the walk
   // spends a whole step (three texels) on each triangle of a leaf, so the SAH
   // decides every leaf rather than stopping at four. Measured on the stream
@@ -99,14 +100,20 @@ OctantBuild buildOctantSequences(std::span<const Triangle> tris, const AccelBuil
   BvhStackConfig constants;
   constants.leafSize = 1;
   const BinaryBvh binary = buildBvhStackTree(tris, config.bvhBuilder, constants);
-  const Bvh bvh = bvhFromBinaryBvh(binary, tris);
-  OctantBuild build{flattenOctantSequences(bvh, tris), bvhStats("bvh-octant", bvh)};
-  build.stats.buildMs = millisecondsSince(start);
-  build.stats.floatsPerTriangle = kOctants * build.sequences.sequences[0].floatsPerTriangle();
-  build.stats.sahCost = binaryBvhSahCost(binary, constants.traversalCost, constants.intersectionCost);
-  build.stats.structureBytes = kOctants * build.sequences.sequences[0].texels.size() * sizeof(glm::vec4);
-  return build;
+  OctantTree tree{bvhFromBinaryBvh(binary, tris), {}};
+  tree.stats = bvhStats("bvh-octant", tree.bvh);
+  tree.stats.sahCost = binaryBvhSahCost(binary, constants.traversalCost, constants.intersectionCost);
+  return tree;
 }
+
+// The build's statistics once its sequences are flattened: eight sequences of `texels` each.
+void finishOctantStats(AccelStats& stats, std::chrono::steady_clock::time_point start, float floatsPerSequence,
+                       uint64_t texels) {
+  stats.buildMs = millisecondsSince(start);
+  stats.floatsPerTriangle = kOctants * floatsPerSequence;
+  stats.structureBytes = kOctants * texels * sizeof(glm::vec4);
+}
+
 
 Bvh kkTree(std::span<const Triangle> tris, const AccelBuildConfig& config) { return buildKayKajiya(tris, config.kayKajiya); }
 Bvh gsTree(std::span<const Triangle> tris, const AccelBuildConfig& config) { return buildGoldsmithSalmon(tris, gsConfig(config)); }
@@ -169,22 +176,37 @@ std::unique_ptr<GpuTraversal> makeGsBvhStream(std::span<const Triangle> tris, co
 }
 
 std::unique_ptr<CpuAccelerator> makeOctantBvhCpu(std::span<const Triangle> tris, const AccelBuildConfig& config) {
-  OctantBuild build = buildOctantSequences(tris, config);
-  return std::make_unique<OctantSequenceAccelerator>(std::move(build.sequences), std::move(build.stats),
-                                                     config.triangleTest);
+  const auto start = std::chrono::steady_clock::now();
+  OctantTree tree = buildOctantTree(tris, config);
+  OctantSequences sequences = flattenOctantSequences(tree.bvh, tris);
+  finishOctantStats(tree.stats, start, sequences.sequences[0].floatsPerTriangle(), sequences.sequences[0].texels.size());
+  return std::make_unique<OctantSequenceAccelerator>(std::move(sequences), std::move(tree.stats), config.triangleTest);
+}
+
+// bvh-octant and bvh-octant-fused on the stream path: the tree freed before
+// the texture is made, the sequences back to back (the peak memory).
+std::unique_ptr<GpuTraversal> makeOctantStream(std::span<const Triangle> tris, const GpuTraversalConfig& config,
+                                               GpuOctantBvhTraversal::Fused fused) {
+  const auto start = std::chrono::steady_clock::now();
+  BackToBackSequences sequences;
+  AccelStats stats;
+  {
+    OctantTree tree = buildOctantTree(tris, config.build);
+    sequences = flattenOctantSequencesBackToBack(tree.bvh, tris);
+    stats = std::move(tree.stats);
+  }
+  finishOctantStats(stats, start, sequences.floatsPerTriangle, sequences.sequenceSize);
+  if (fused == GpuOctantBvhTraversal::Fused::Yes) stats.name = "bvh-octant-fused";
+  return std::make_unique<GpuOctantBvhTraversal>(std::move(sequences), std::move(stats), config, fused);
 }
 
 std::unique_ptr<GpuTraversal> makeOctantBvhStream(std::span<const Triangle> tris, const GpuTraversalConfig& config) {
-  OctantBuild build = buildOctantSequences(tris, config.build);
-  return std::make_unique<GpuOctantBvhTraversal>(build.sequences, std::move(build.stats), config);
+  return makeOctantStream(tris, config, GpuOctantBvhTraversal::Fused::No);
 }
 
 std::unique_ptr<GpuTraversal> makeOctantBvhFusedStream(std::span<const Triangle> tris,
                                                        const GpuTraversalConfig& config) {
-  OctantBuild build = buildOctantSequences(tris, config.build);
-  build.stats.name = "bvh-octant-fused";
-  return std::make_unique<GpuOctantBvhTraversal>(build.sequences, std::move(build.stats), config,
-                                                 GpuOctantBvhTraversal::Fused::Yes);
+  return makeOctantStream(tris, config, GpuOctantBvhTraversal::Fused::Yes);
 }
 
 }  // namespace passtrace

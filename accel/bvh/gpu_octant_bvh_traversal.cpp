@@ -4,22 +4,11 @@
 #include "stream/inout_stream.h"
 
 namespace passtrace {
-namespace {
 
-std::vector<glm::vec4> concatenate(const OctantSequences& sequences) {
-  std::vector<glm::vec4> texels;
-  texels.reserve(kOctants * sequences.sequences[0].texels.size());
-  for (const EscapeSequence& seq : sequences.sequences)
-    texels.insert(texels.end(), seq.texels.begin(), seq.texels.end());
-  return texels;
-}
-
-}  // namespace
-
-GpuOctantBvhTraversal::GpuOctantBvhTraversal(const OctantSequences& sequences, AccelStats stats,
+GpuOctantBvhTraversal::GpuOctantBvhTraversal(BackToBackSequences sequences, AccelStats stats,
                                              const GpuTraversalConfig& config, Fused fused)
-    : sequenceSize_(sequences.sequences[0].texels.size()),
-      sequences_(concatenate(sequences), "the eight octant BVH sequences", config.maxPageTexels),
+    : sequenceSize_(sequences.sequenceSize),
+      sequences_(sequences.texels, "the eight octant BVH sequences", config.maxPageTexels),
       kernel_("bvh_octant_traverse", "bvh/bvh_octant_traverse.frag", StreamKernel::Depth::Test,
               {streamPagesDefine({&sequences_}), triangleTestDefine(config.build.triangleTest)}),
       stats_(std::move(stats)),

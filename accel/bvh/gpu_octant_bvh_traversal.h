@@ -16,7 +16,8 @@ namespace passtrace {
 class GpuOctantBvhTraversal final : public GpuTraversal {
  public:
   enum class Fused { No, Yes };
-  GpuOctantBvhTraversal(const OctantSequences& sequences, AccelStats stats, const GpuTraversalConfig& config,
+  // `sequences` is uploaded and freed with the constructor's end.
+  GpuOctantBvhTraversal(BackToBackSequences sequences, AccelStats stats, const GpuTraversalConfig& config,
                         Fused fused = Fused::No);
   uint64_t trace(InOutStream& rays, uint64_t active, const std::function<uint64_t()>& retire) override;
   AccelStats stats() const override { return stats_; }

@@ -72,3 +72,21 @@ OctantSequences flattenOctantSequences(const Bvh& bvh, std::span<const Triangle>
 }
 
 }  // namespace passtrace
+
+namespace passtrace {
+
+BackToBackSequences flattenOctantSequencesBackToBack(const Bvh& bvh, std::span<const Triangle> tris) {
+  BackToBackSequences out;
+  for (uint32_t octant = 0; octant < kOctants; ++octant) {
+    EscapeSequence sequence = flattenEscapeSequence(orderChildrenForOctant(bvh, octant), tris);
+    if (octant == 0) {
+      out.sequenceSize = sequence.texels.size();
+      out.floatsPerTriangle = sequence.floatsPerTriangle();
+      out.texels.reserve(kOctants * sequence.texels.size());  // every octant's is the same size
+    }
+    out.texels.insert(out.texels.end(), sequence.texels.begin(), sequence.texels.end());
+  }
+  return out;
+}
+
+}  // namespace passtrace

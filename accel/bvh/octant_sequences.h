@@ -14,6 +14,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -45,5 +46,16 @@ Bvh bvhFromBinaryBvh(const BinaryBvh& binary, std::span<const Triangle> tris);
 // octant's diagonal (+-1, +-1, +-1), nearest first; ties keep stored order.
 Bvh orderChildrenForOctant(const Bvh& bvh, uint32_t octant);
 OctantSequences flattenOctantSequences(const Bvh& bvh, std::span<const Triangle> tris);
+
+// The same eight sequences back to back, as the GPU reads them: flattened one
+// octant at a time into one array, so that the eight apart and their
+// concatenation never coexist (the stream path's peak memory: 1,936 bytes per
+// triangle held the eight, the concatenation and the texture at once).
+struct BackToBackSequences {
+  std::vector<glm::vec4> texels;
+  uint64_t sequenceSize = 0;  // texels in one sequence
+  float floatsPerTriangle = 0;  // one sequence's (EscapeSequence::floatsPerTriangle)
+};
+BackToBackSequences flattenOctantSequencesBackToBack(const Bvh& bvh, std::span<const Triangle> tris);
 
 }  // namespace passtrace
