@@ -71,10 +71,6 @@ OctantSequences flattenOctantSequences(const Bvh& bvh, std::span<const Triangle>
   return out;
 }
 
-}  // namespace passtrace
-
-namespace passtrace {
-
 BackToBackSequences flattenOctantSequencesBackToBack(const Bvh& bvh, std::span<const Triangle> tris) {
   BackToBackSequences out;
   for (uint32_t octant = 0; octant < kOctants; ++octant) {

@@ -69,6 +69,21 @@ TEST(OctantSequences, EverySequenceHoldsEveryReferenceOnce) {
   }
 }
 
+// The stream path's layout (back to back, flattened one octant at a time) is
+// the eight sequences concatenated, texel for texel.
+TEST(OctantSequences, BackToBackIsTheEightConcatenated) {
+  const std::vector<Triangle> tris = testmesh::triangleSoup(300, Aabb{glm::vec3(0.0f), glm::vec3(10.0f)}, 1.5f, 11);
+  const Bvh bvh = bvhFromBinaryBvh(buildBvhStackTree(tris, BvhBuilderKind::Sah), tris);
+  const OctantSequences apart = flattenOctantSequences(bvh, tris);
+  const BackToBackSequences together = flattenOctantSequencesBackToBack(bvh, tris);
+  std::vector<glm::vec4> concatenated;
+  for (const EscapeSequence& seq : apart.sequences)
+    concatenated.insert(concatenated.end(), seq.texels.begin(), seq.texels.end());
+  EXPECT_EQ(together.sequenceSize, apart.sequences[0].texels.size());
+  EXPECT_EQ(together.floatsPerTriangle, apart.sequences[0].floatsPerTriangle());
+  EXPECT_TRUE(together.texels == concatenated);
+}
+
 TEST(OctantSequences, EmptyAndLoneLeafTrees) {
   EXPECT_TRUE(octantsOf({}).sequences[0].texels.empty());
   const std::vector<Triangle> one = testmesh::singleTriangle();
