@@ -152,6 +152,8 @@ TEST_F(MpiCli, AnErrorOnOneRankEndsEveryRankWithOneLine) {
   expectOneLineError(r, "rank 1: " + path("bad.obj") + ":4");
   // The same on every rank (a file that cannot be written): still one line.
   expectOneLineError(runRanks(2, "-s cornell -r 1 -w 16 -o " + path("missing/x.png")), "rank 0");
+  // A frame with fewer rows than ranks to divide them among.
+  expectOneLineError(runRanks(2, "-s cornell -r 1 --width 8 --height 1 -o " + path("x.png")), "--height 1");
 }
 
 }  // namespace
