@@ -17,8 +17,9 @@ using nlohmann::json;
 // A message is chunks, each its length (8 bytes) and its bytes: first the
 // description as CBOR (numbers as doubles and integers: exact, so rank 0's
 // sums are the single process's), then the arrays and files as raw bytes —
-// nlohmann's CBOR reads a byte string a byte at a time (80 ms for a 1024x512
-// band's pixels, measured), memcpy does not.
+// nlohmann's CBOR reads a byte string a byte at a time: a Kitchen 1024² frame
+// of two ranks took about 136 ms more than its renders that way, about 20 ms
+// with raw chunks.
 class ChunkWriter {
  public:
   void add(const void* data, size_t bytes) {
