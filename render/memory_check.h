@@ -24,9 +24,13 @@ uint64_t estimatedRunBytes(RendererId renderer, const Structure* structure, uint
 // its current use where one is set; nullopt when neither can be read.
 std::optional<uint64_t> availableMemoryBytes();
 
+// This process's resident bytes now (/proc/self/statm; 0 where unreadable).
+uint64_t residentBytes();
+
 // Throws std::runtime_error("SCENE: N triangles with STRUCTURE on the ...
 // renderer need about X GiB; Y GiB available (nothing was built)") when the
-// estimate exceeds what is available.
+// estimate exceeds what is available plus what this process holds already
+// (the estimate counts the scene, which is loaded before the second check).
 void checkRunFitsInMemory(const std::string& scene, RendererId renderer, const Structure* structure,
                           uint64_t triangles, uint64_t pixels, double extraBytesPerPixel = 0);
 

@@ -1,6 +1,8 @@
 // The memory check's estimate (render/memory_check.h) counts what the GPU
 // renderer keeps per pixel beyond its ray stream: the Whitted ray stacks and
 // the compaction's second stream (GpuRenderer::extraBytesPerPixel).
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "render/gpu_renderer.h"
@@ -35,6 +37,18 @@ TEST(MemoryCheck, ExtraBytesPerPixelGrowTheEstimateWithItsMargin) {
   const uint64_t base = estimatedRunBytes(RendererId::Gpu, &kk, 100000, pixels);
   const uint64_t whitted = estimatedRunBytes(RendererId::Gpu, &kk, 100000, pixels, 768.0);
   EXPECT_NEAR(double(whitted - base), 1.25 * 768.0 * double(pixels), 2.0);
+}
+
+// The second check runs with the scene loaded, so it adds what the process
+// holds to what is available: residentBytes must see memory this process touches.
+TEST(MemoryCheck, ResidentBytesSeeWhatThisProcessTouches) {
+  const uint64_t before = residentBytes();
+  ASSERT_GT(before, 0u);
+  constexpr size_t kBytes = 256u << 20;
+  std::vector<char> block(kBytes, 1);  // value-initialised: every page written
+  const uint64_t after = residentBytes();
+  EXPECT_GE(after, before + kBytes * 9 / 10) << before << " -> " << after;
+  EXPECT_EQ(block[kBytes - 1], 1);
 }
 
 }  // namespace
