@@ -5,7 +5,7 @@
 // --packet traces the same rays as rtcIntersect16 (8 without AVX-512) packets
 // of 8x2 (8x1) pixel tiles instead, the baseline of -r 3's packet path.
 //
-//   build/tests/measure/measure_bare_embree SCENE [WIDTH=512] [THREADS=2] [REPEATS=5] [--packet]
+//   build/tests/measure/measure_bare_embree SCENE|spheres:N [WIDTH=512] [THREADS=2] [REPEATS=5] [--packet]
 
 #include <algorithm>
 #include <chrono>
@@ -22,6 +22,7 @@
 
 #include "render/camera.h"
 #include "scenes/scene_registry.h"
+#include "tests/measure/tool_scene.h"
 
 namespace {
 
@@ -75,7 +76,7 @@ int main(int argc, char** argv) try {
   bool packet = false;
   if (argc > 1 && std::string(argv[argc - 1]) == "--packet") packet = true, --argc;
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s SCENE [WIDTH=512] [THREADS=2] [REPEATS=5] [--packet]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s SCENE|spheres:N [WIDTH=512] [THREADS=2] [REPEATS=5] [--packet]\n", argv[0]);
     return 2;
   }
   const std::string sceneName = argv[1];
@@ -84,7 +85,7 @@ int main(int argc, char** argv) try {
   const int repeats = argc > 4 ? std::stoi(argv[4]) : 5;
   if (width <= 0 || threads <= 0 || repeats <= 0) throw std::invalid_argument("WIDTH, THREADS, REPEATS must be > 0");
 
-  const Scene scene = loadScene(sceneName);
+  const Scene scene = loadToolScene(sceneName);
   const CameraBasis basis = makeCameraBasis(scene.camera, width, width);
   const size_t count = size_t(width) * size_t(width);
   std::vector<Ray> rays(count);

@@ -7,7 +7,7 @@
 // each repeat so that they share the machine's state; each cell is the
 // minimum over the repeats. Prints one JSON line per ray kind.
 //
-//   build/tests/measure/measure_packet_handover SCENE [WIDTH=512] [REPEATS=7] [AO_SAMPLES=4]
+//   build/tests/measure/measure_packet_handover SCENE|spheres:N [WIDTH=512] [REPEATS=7] [AO_SAMPLES=4]
 
 #include <algorithm>
 #include <chrono>
@@ -22,6 +22,7 @@
 #include "accel/wide_bvh/wide_bvh_traversal.h"
 #include "scenes/scene_registry.h"
 #include "tests/measure/renderer_rays.h"
+#include "tests/measure/tool_scene.h"
 
 namespace {
 
@@ -36,7 +37,7 @@ int main(int argc, char** argv) try {
   if (!args) return 2;
   if (!wideBvhAvx2Available()) throw std::runtime_error("packets need AVX2");
 
-  const Scene scene = loadScene(args->scene);
+  const Scene scene = loadToolScene(args->scene);
   const WideBvh bvh = collapseToWideBvh(buildBinnedSahBvh(scene.triangles), scene.triangles);
   const std::vector<PacketSet> sets = rendererRays(scene, bvh, args->width, args->aoSamples);
 

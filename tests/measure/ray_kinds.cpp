@@ -9,7 +9,7 @@
 // each path found hit or blocked (Embree's triangle test may differ on ties).
 // Without Embree the Embree paths are left out.
 //
-//   build/tests/measure/measure_ray_kinds SCENE [WIDTH=512] [REPEATS=5] [AO_SAMPLES=4]
+//   build/tests/measure/measure_ray_kinds SCENE|spheres:N [WIDTH=512] [REPEATS=5] [AO_SAMPLES=4]
 
 #include <algorithm>
 #include <chrono>
@@ -28,6 +28,7 @@
 #include "accel/wide_bvh/wide_bvh_traversal.h"
 #include "scenes/scene_registry.h"
 #include "tests/measure/renderer_rays.h"
+#include "tests/measure/tool_scene.h"
 
 namespace {
 
@@ -59,7 +60,7 @@ int main(int argc, char** argv) try {
   if (!args) return 2;
   if (!wideBvhAvx2Available()) throw std::runtime_error("bvh8-packet needs AVX2");
 
-  const Scene scene = loadScene(args->scene);
+  const Scene scene = loadToolScene(args->scene);
   const std::vector<PacketSet> sets =
       rendererRays(scene, collapseToWideBvh(buildBinnedSahBvh(scene.triangles), scene.triangles), args->width,
                    args->aoSamples);

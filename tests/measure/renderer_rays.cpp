@@ -49,7 +49,7 @@ void add(PacketSet& set, const std::vector<Ray>& packet) {
 
 std::optional<RayToolArgs> parseRayToolArgs(int argc, char** argv, int defaultRepeats) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s SCENE [WIDTH=512] [REPEATS=%d] [AO_SAMPLES=4]\n", argv[0], defaultRepeats);
+    std::fprintf(stderr, "usage: %s SCENE|spheres:N [WIDTH=512] [REPEATS=%d] [AO_SAMPLES=4]\n", argv[0], defaultRepeats);
     return std::nullopt;
   }
   RayToolArgs args{argv[1]};
