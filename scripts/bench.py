@@ -113,6 +113,9 @@ SECTIONS = {
              "FP32 peak and bandwidth (roofline) -> docs/bench-speed/REPORT.md",
     "cones": "seed 000's experiment (scripts/bench_cones.py): cones of 0.04-5 degrees against 4/16/64 rays per "
              "pixel through kd-tree and kk-bvh -> docs/bench-cones/REPORT.md",
+    "scale": "issue 36 (scripts/bench_scale.py): the fastest CPU and stream rows and Embree on spheres of "
+             "--triangles-list triangles and the real scenes; build ms, bytes per triangle (structure and peak "
+             "memory), Mrays/s of primary, shadow and AO rays; --repeats rounds -> docs/bench-scale/REPORT.md",
 }
 HEAT_STRUCTURE = ("gpu", "kk-bvh")  # the structure whose traversal steps are drawn per scene
 
@@ -658,6 +661,10 @@ def main(argv=None):
     parser.add_argument("--frames", type=int, help="--papay: frames of each dynamic-scene run (default 30); "
                         "--dacrt: of the animation (default 10)")
     parser.add_argument("--dynamic-size", type=int, help="--papay/--dacrt: image side of the dynamic-scene runs")
+    parser.add_argument("--triangles-list", help="--scale: the sphere fields' triangle counts, comma-separated "
+                        "(default 100000,1000000,10000000,100000000)")
+    parser.add_argument("--no-real-scenes", action="store_true", help="--scale: the sphere fields only, not the "
+                        "real scenes (dragon, conference, sibenik)")
     args = parser.parse_args(argv)
     if args.scenes_dir:  # every passtrace this run starts finds them there
         os.environ["PASSTRACE_SCENES_DIR"] = str(pathlib.Path(args.scenes_dir).resolve())
