@@ -17,32 +17,41 @@ bool glAccepts(GLsizei width, GLsizei height) {
   return acceptedWidth != 0;
 }
 
-// One page: `texels` (all but possibly the last row full) into a new texture
-// of 2^widthLog2 columns. Full rows go up straight from the caller's data;
-// only a partial last row is copied, so no copy of the whole stream is made.
-GLuint uploadPage(std::span<const glm::vec4> texels, uint32_t widthLog2, const std::string& what) {
+// One page of `texels` texels in 2^widthLog2 columns, the tail of its last
+// row cleared to zero (never read, but defined).
+GLuint allocatePage(size_t texels, uint32_t widthLog2, const std::string& what) {
   const size_t width = size_t(1) << widthLog2;
-  const size_t fullRows = texels.size() / width;
-  const size_t rows = std::max<size_t>(1, (texels.size() + width - 1) / width);
+  const size_t rows = std::max<size_t>(1, (texels + width - 1) / width);
   GLuint texture = 0;
   glCreateTextures(GL_TEXTURE_2D, 1, &texture);
   glTextureStorage2D(texture, 1, GL_RGBA32F, GLsizei(width), GLsizei(rows));
   glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  if (fullRows > 0)
-    glTextureSubImage2D(texture, 0, 0, 0, GLsizei(width), GLsizei(fullRows), GL_RGBA, GL_FLOAT, texels.data());
-  if (fullRows < rows) {
-    std::vector<glm::vec4> last(width, glm::vec4(0.0f));
-    std::copy(texels.begin() + fullRows * width, texels.end(), last.begin());
-    glTextureSubImage2D(texture, 0, 0, GLint(fullRows), GLsizei(width), 1, GL_RGBA, GL_FLOAT, last.data());
-  }
+  if (const size_t tail = rows * width - texels; tail > 0)
+    glClearTexSubImage(texture, 0, GLint(width - tail), GLint(rows - 1), 0, GLsizei(tail), 1, 1, GL_RGBA, GL_FLOAT,
+                       nullptr);
   try {
-    checkGlError("uploading " + what + " (" + std::to_string(width * rows * sizeof(glm::vec4) >> 20) + " MiB texture)");
+    checkGlError("making " + what + " (" + std::to_string(width * rows * sizeof(glm::vec4) >> 20) + " MiB texture)");
   } catch (...) {
     glDeleteTextures(1, &texture);
     throw;
   }
   return texture;
+}
+
+// Texels [first, first + texels.size()) of one page: a partial first row, full
+// rows, a partial last row, each straight from the caller's data (no copy).
+void writePage(GLuint texture, uint32_t widthLog2, size_t first, std::span<const glm::vec4> texels) {
+  const size_t width = size_t(1) << widthLog2;
+  while (!texels.empty()) {
+    const size_t x = first % width, y = first / width;
+    const size_t rows = x == 0 ? std::max<size_t>(1, texels.size() / width) : 1;
+    const size_t count = x == 0 && texels.size() >= width ? rows * width : std::min(width - x, texels.size());
+    glTextureSubImage2D(texture, 0, GLint(x), GLint(y), GLsizei(rows > 1 || count == width ? width : count),
+                        GLsizei(rows), GL_RGBA, GL_FLOAT, texels.data());
+    first += count;
+    texels = texels.subspan(count);
+  }
 }
 
 }  // namespace
@@ -65,7 +74,12 @@ uint32_t ConstInputStream::largestPageLog2() {
 }
 
 ConstInputStream::ConstInputStream(std::span<const glm::vec4> texels, const std::string& what, uint64_t maxPageTexels)
-    : size_(texels.size()) {
+    : ConstInputStream(texels.size(), what, maxPageTexels) {
+  write(0, texels);  // a throw here runs the destructor: the delegated constructor has finished
+}
+
+ConstInputStream::ConstInputStream(size_t count, const std::string& what, uint64_t maxPageTexels)
+    : what_(what), size_(count) {
   uint32_t pageLog2 = largestPageLog2();
   if (maxPageTexels > 0) pageLog2 = std::min(pageLog2, uint32_t(std::bit_width(maxPageTexels)) - 1);
   const size_t pageTexels = size_t(1) << pageLog2;
@@ -86,14 +100,29 @@ ConstInputStream::ConstInputStream(std::span<const glm::vec4> texels, const std:
   }
   try {
     for (size_t p = 0; p < pages; ++p) {
-      const size_t begin = p * pageTexels, end = std::min(size_, begin + pageTexels);
+      const size_t begin = std::min(size_, p * pageTexels), end = std::min(size_, begin + pageTexels);
       const std::string page = pages == 1 ? what : what + " page " + std::to_string(p + 1) + "/" + std::to_string(pages);
-      pages_.push_back(uploadPage(texels.subspan(std::min(begin, size_), end - std::min(begin, size_)), widthLog2_, page));
+      pages_.push_back(allocatePage(end - begin, widthLog2_, page));
     }
   } catch (...) {
     glDeleteTextures(GLsizei(pages_.size()), pages_.data());
     throw;
   }
+}
+
+void ConstInputStream::write(size_t first, std::span<const glm::vec4> texels) {
+  if (first > size_ || texels.size() > size_ - first)
+    throw GlError(what_ + ": writing texels " + std::to_string(first) + "-" + std::to_string(first + texels.size()) +
+                  " of " + std::to_string(size_));
+  const size_t pageTexels = pageLog2_ >= 31 ? size_ + 1 : size_t(1) << pageLog2_;
+  while (!texels.empty()) {
+    const size_t page = first / pageTexels, offset = first % pageTexels;
+    const size_t count = std::min(texels.size(), pageTexels - offset);
+    writePage(pages_[page], widthLog2_, offset, texels.first(count));
+    first += count;
+    texels = texels.subspan(count);
+  }
+  checkGlError("uploading " + what_);
 }
 
 ConstInputStream::~ConstInputStream() { glDeleteTextures(GLsizei(pages_.size()), pages_.data()); }

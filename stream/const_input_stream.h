@@ -35,9 +35,16 @@ class ConstInputStream {
   // needs more than kMaxStreamPages pages or the GL fails to store it
   // (GL_OUT_OF_MEMORY is reported as such).
   ConstInputStream(std::span<const glm::vec4> texels, const std::string& what, uint64_t maxPageTexels = 0);
+  // Storage for `count` texels, filled afterwards by write(): data made in
+  // pieces (bvh-octant's eight sequences) goes up piece by piece, and the
+  // whole never exists in memory beside the texture.
+  ConstInputStream(size_t count, const std::string& what, uint64_t maxPageTexels = 0);
   ~ConstInputStream();
   ConstInputStream(const ConstInputStream&) = delete;
   ConstInputStream& operator=(const ConstInputStream&) = delete;
+
+  // Texels [first, first + texels.size()) of the stream (within size()).
+  void write(size_t first, std::span<const glm::vec4> texels);
 
   size_t size() const { return size_; }
   uint32_t pageCount() const { return uint32_t(pages_.size()); }
@@ -55,6 +62,7 @@ class ConstInputStream {
 
  private:
   std::vector<GLuint> pages_;
+  std::string what_;
   size_t size_ = 0;
   uint32_t widthLog2_ = 0;
   uint32_t pageLog2_ = 31;

@@ -183,21 +183,21 @@ std::unique_ptr<CpuAccelerator> makeOctantBvhCpu(std::span<const Triangle> tris,
   return std::make_unique<OctantSequenceAccelerator>(std::move(sequences), std::move(tree.stats), config.triangleTest);
 }
 
-// bvh-octant and bvh-octant-fused on the stream path: the tree freed before
-// the texture is made, the sequences back to back (the peak memory).
+// bvh-octant and bvh-octant-fused on the stream path: the eight sequences
+// written into their texture octant by octant from the tree (the peak memory).
 std::unique_ptr<GpuTraversal> makeOctantStream(std::span<const Triangle> tris, const GpuTraversalConfig& config,
                                                GpuOctantBvhTraversal::Fused fused) {
   const auto start = std::chrono::steady_clock::now();
-  BackToBackSequences sequences;
-  AccelStats stats;
-  {
-    OctantTree tree = buildOctantTree(tris, config.build);
-    sequences = flattenOctantSequencesBackToBack(tree.bvh, tris);
-    stats = std::move(tree.stats);
-  }
-  finishOctantStats(stats, start, sequences.floatsPerTriangle, sequences.sequenceSize);
-  if (fused == GpuOctantBvhTraversal::Fused::Yes) stats.name = "bvh-octant-fused";
-  return std::make_unique<GpuOctantBvhTraversal>(std::move(sequences), std::move(stats), config, fused);
+  OctantTree tree = buildOctantTree(tris, config.build);
+  const uint64_t texels = octantSequenceTexels(tree.bvh);
+  // Table 3's accounting (8 floats per box, triangles excluded), as one sequence's.
+  const float floatsPerSequence =
+      tris.empty() ? 0.0f : 8.0f * float(tree.bvh.internalCount()) / float(tree.bvh.leafCount());
+  finishOctantStats(tree.stats, start, floatsPerSequence, texels);
+  tree.stats.structureBytes += 2 * tris.size() * sizeof(glm::vec4);  // the shared triangle stream
+  if (fused == GpuOctantBvhTraversal::Fused::Yes) tree.stats.name = "bvh-octant-fused";
+  auto traversal = std::make_unique<GpuOctantBvhTraversal>(tree.bvh, tris, std::move(tree.stats), config, fused);
+  return traversal;
 }
 
 std::unique_ptr<GpuTraversal> makeOctantBvhStream(std::span<const Triangle> tris, const GpuTraversalConfig& config) {

@@ -4,15 +4,27 @@
 #include <string>
 
 namespace passtrace {
-namespace {
+void writeLeafTexels(glm::vec4* out, const Triangle& tri, uint32_t triangle, LeafTexels leaves) {
+  if (leaves == LeafTexels::Shared) {
+    out[0] = glm::vec4(tri.v0, -packIndex(triangle));
+    return;
+  }
+  out[0] = glm::vec4(tri.v0, -1.0f);
+  out[1] = glm::vec4(tri.v1, packIndex(triangle));
+  out[2] = glm::vec4(tri.v2, 0.0f);
+}
 
-constexpr uint64_t kBoxTexels = 2;
-constexpr uint64_t kTriangleTexels = 3;
-constexpr uint64_t kMaxPackable = 0x7F000000u;  // packIndex is valid below this
+std::vector<glm::vec4> sharedTriangleTexels(std::span<const Triangle> tris) {
+  std::vector<glm::vec4> texels(2 * tris.size());
+  for (size_t i = 0; i < tris.size(); ++i) {
+    texels[2 * i] = glm::vec4(tris[i].v1, 0.0f);
+    texels[2 * i + 1] = glm::vec4(tris[i].v2, 0.0f);
+  }
+  return texels;
+}
 
-}  // namespace
-
-EscapeSequence flattenEscapeSequence(const Bvh& bvh, std::span<const Triangle> tris) {
+EscapeSequence flattenEscapeSequence(const Bvh& bvh, std::span<const Triangle> tris, LeafTexels leaves) {
+  const uint64_t triangleTexels = leafTexelCount(leaves);
   EscapeSequence seq;
   if (bvh.nodes.empty()) return seq;
 
@@ -33,11 +45,11 @@ EscapeSequence flattenEscapeSequence(const Bvh& bvh, std::span<const Triangle> t
   std::vector<uint64_t> subtree(bvh.nodes.size(), 0);
   for (auto it = preorder.rbegin(); it != preorder.rend(); ++it) {
     const BvhNode& node = bvh.nodes[*it];
-    uint64_t size = node.isLeaf() ? kTriangleTexels : kBoxTexels;
+    uint64_t size = node.isLeaf() ? triangleTexels : kBoxTexels;
     for (uint32_t c = 0; c < node.childCount; ++c) size += subtree[bvh.children[node.firstChild + c]];
     subtree[*it] = size;
   }
-  if (subtree[0] >= kMaxPackable)
+  if (subtree[0] >= kMaxSequenceTexels)
     throw std::length_error("flattenEscapeSequence: " + std::to_string(subtree[0]) +
                             " texels exceed the packable index range");
 
@@ -50,16 +62,12 @@ EscapeSequence flattenEscapeSequence(const Bvh& bvh, std::span<const Triangle> t
       if (node.triangle >= tris.size())
         throw std::invalid_argument("flattenEscapeSequence: leaf " + std::to_string(index) + " names triangle " +
                                     std::to_string(node.triangle) + " of " + std::to_string(tris.size()));
-      const Triangle& tri = tris[node.triangle];
-      out[at] = glm::vec4(tri.v0, -1.0f);
-      out[at + 1] = glm::vec4(tri.v1, packIndex(node.triangle));
-      out[at + 2] = glm::vec4(tri.v2, 0.0f);
-      at += kTriangleTexels;
+      writeLeafTexels(out + at, tris[node.triangle], node.triangle, leaves);
+      at += uint32_t(triangleTexels);
       ++seq.triangleCount;
     } else {
       const auto escape = static_cast<uint32_t>(at + subtree[index]);
-      out[at] = glm::vec4(node.box.min, packIndex(escape));
-      out[at + 1] = glm::vec4(node.box.max, 0.0f);
+      writeBoxTexels(out + at, node.box, escape);
       at += kBoxTexels;
       ++seq.boxCount;
     }

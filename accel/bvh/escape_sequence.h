@@ -14,6 +14,13 @@
 //
 // escape is the texel index just after the box's subtree, texels.size() for
 // boxes on the right edge of the tree; a triangle's escape is implicitly i+3.
+//
+// With LeafTexels::Shared (bvh-octant on the stream path, whose eight
+// sequences would otherwise store every triangle eight times) a triangle is
+// one texel, its escape i+1:
+//     [i]   (v0.x, v0.y, v0.z, -packIndex(scene triangle index))
+// and v1, v2 are texels 2t and 2t+1 of a triangle stream the sequences share
+// (sharedTriangleTexels). packIndex is never 0, so w < 0 still marks it.
 // Packed indices are positive floats (stream/texel_address.h), so w >= 0
 // tells a box from a triangle with the first read.
 
@@ -42,9 +49,26 @@ struct EscapeSequence {
   }
 };
 
+enum class LeafTexels { Inline, Shared };
+inline constexpr uint64_t kBoxTexels = 2;
+inline constexpr uint64_t leafTexelCount(LeafTexels leaves) { return leaves == LeafTexels::Inline ? 3 : 1; }
+// packIndex is valid below this; a sequence's texel indices must stay under it.
+inline constexpr uint64_t kMaxSequenceTexels = 0x7F000000u;
+
 // Depth first, children in stored order. Throws std::invalid_argument for a
 // leaf whose triangle index is outside tris, std::length_error when the
 // sequence would exceed the packable index range.
-EscapeSequence flattenEscapeSequence(const Bvh& bvh, std::span<const Triangle> tris);
+EscapeSequence flattenEscapeSequence(const Bvh& bvh, std::span<const Triangle> tris,
+                                     LeafTexels leaves = LeafTexels::Inline);
+
+// The texels of a box and of a leaf in either layout.
+inline void writeBoxTexels(glm::vec4* out, const Aabb& box, uint32_t escape) {
+  out[0] = glm::vec4(box.min, packIndex(escape));
+  out[1] = glm::vec4(box.max, 0.0f);
+}
+void writeLeafTexels(glm::vec4* out, const Triangle& tri, uint32_t triangle, LeafTexels leaves);
+
+// LeafTexels::Shared's triangle stream: (v1, 0), (v2, 0) per triangle, in scene order.
+std::vector<glm::vec4> sharedTriangleTexels(std::span<const Triangle> tris);
 
 }  // namespace passtrace

@@ -1,10 +1,12 @@
 #pragma once
 // The octant-ordered escape-index BVH on the GPU: the eight sequences of
-// accel/bvh/octant_sequences.h in one ConstInputStream, walked by
+// accel/bvh/octant_sequences.h in one ConstInputStream, their triangles'
+// second and third vertices in another (LeafTexels::Shared), walked by
 // kernels_glsl/bvh/bvh_octant_traverse.frag; with Fused::Yes (bvh-octant-fused)
 // it also offers kernels_glsl/bvh/bvh_octant_fused.frag for a primary bounce.
 
 #include <optional>
+#include <span>
 
 #include "accel/bvh/octant_sequences.h"
 #include "accel/gpu_traversal.h"
@@ -16,9 +18,9 @@ namespace passtrace {
 class GpuOctantBvhTraversal final : public GpuTraversal {
  public:
   enum class Fused { No, Yes };
-  // `sequences` is uploaded and freed with the constructor's end.
-  GpuOctantBvhTraversal(BackToBackSequences sequences, AccelStats stats, const GpuTraversalConfig& config,
-                        Fused fused = Fused::No);
+  // Uploads `bvh`'s eight sequences octant by octant (writeOctantSequences).
+  GpuOctantBvhTraversal(const Bvh& bvh, std::span<const Triangle> tris, AccelStats stats,
+                        const GpuTraversalConfig& config, Fused fused = Fused::No);
   uint64_t trace(InOutStream& rays, uint64_t active, const std::function<uint64_t()>& retire) override;
   AccelStats stats() const override { return stats_; }
   const FusedBounce* fusedBounce() const override { return fused_ ? &*fused_ : nullptr; }
@@ -27,6 +29,7 @@ class GpuOctantBvhTraversal final : public GpuTraversal {
  private:
   uint64_t sequenceSize_;
   ConstInputStream sequences_;
+  ConstInputStream triangles_;
   StreamKernel kernel_;
   AccelStats stats_;
   int loopLimit_;

@@ -1,6 +1,8 @@
 #include "accel/bvh/octant_sequences.h"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 namespace passtrace {
 
@@ -49,18 +51,55 @@ Bvh bvhFromBinaryBvh(const BinaryBvh& binary, std::span<const Triangle> tris) {
   return bvh;
 }
 
-Bvh orderChildrenForOctant(const Bvh& bvh, uint32_t octant) {
-  const glm::vec3 diagonal((octant & 1u) ? -1.0f : 1.0f, (octant & 2u) ? -1.0f : 1.0f, (octant & 4u) ? -1.0f : 1.0f);
-  Bvh ordered = bvh;
-  for (const BvhNode& node : ordered.nodes) {
-    auto first = ordered.children.begin() + node.firstChild;
-    // Box centres along the diagonal: a ray of this octant reaches smaller values first.
-    std::stable_sort(first, first + node.childCount, [&](uint32_t a, uint32_t b) {
-      const Aabb& boxA = ordered.nodes[a].box;
-      const Aabb& boxB = ordered.nodes[b].box;
-      return glm::dot(boxA.min + boxA.max, diagonal) < glm::dot(boxB.min + boxB.max, diagonal);
-    });
+namespace {
+
+glm::vec3 octantDiagonal(uint32_t octant) {
+  return {(octant & 1u) ? -1.0f : 1.0f, (octant & 2u) ? -1.0f : 1.0f, (octant & 4u) ? -1.0f : 1.0f};
+}
+
+// `node`'s children (indices into bvh.nodes) in the octant's order: box centres
+// along the diagonal, where a ray of this octant reaches smaller values first;
+// ties keep stored order.
+void sortChildrenForOctant(const Bvh& bvh, glm::vec3 diagonal, uint32_t* first, uint32_t count) {
+  std::stable_sort(first, first + count, [&](uint32_t a, uint32_t b) {
+    const Aabb& boxA = bvh.nodes[a].box;
+    const Aabb& boxB = bvh.nodes[b].box;
+    return glm::dot(boxA.min + boxA.max, diagonal) < glm::dot(boxB.min + boxB.max, diagonal);
+  });
+}
+
+// Texels of every subtree with LeafTexels::Shared; ordering children moves
+// subtrees without resizing them, so one count serves the eight octants.
+std::vector<uint32_t> sharedSubtreeTexels(const Bvh& bvh) {
+  std::vector<uint32_t> preorder;
+  preorder.reserve(bvh.nodes.size());
+  for (std::vector<uint32_t> stack{0}; !stack.empty();) {
+    const uint32_t index = stack.back();
+    stack.pop_back();
+    preorder.push_back(index);
+    const BvhNode& node = bvh.nodes[index];
+    stack.insert(stack.end(), bvh.children.begin() + node.firstChild,
+                 bvh.children.begin() + node.firstChild + node.childCount);
   }
+  std::vector<uint32_t> subtree(bvh.nodes.size(), 0);
+  for (auto it = preorder.rbegin(); it != preorder.rend(); ++it) {
+    const BvhNode& node = bvh.nodes[*it];
+    uint64_t size = node.isLeaf() ? leafTexelCount(LeafTexels::Shared) : kBoxTexels;
+    for (uint32_t c = 0; c < node.childCount; ++c) size += subtree[bvh.children[node.firstChild + c]];
+    if (size >= kMaxSequenceTexels)
+      throw std::length_error("bvh-octant: a sequence of " + std::to_string(size) +
+                              " texels exceeds the packable index range");
+    subtree[*it] = uint32_t(size);
+  }
+  return subtree;
+}
+
+}  // namespace
+
+Bvh orderChildrenForOctant(const Bvh& bvh, uint32_t octant) {
+  Bvh ordered = bvh;
+  for (const BvhNode& node : ordered.nodes)
+    sortChildrenForOctant(ordered, octantDiagonal(octant), ordered.children.data() + node.firstChild, node.childCount);
   return ordered;
 }
 
@@ -71,18 +110,51 @@ OctantSequences flattenOctantSequences(const Bvh& bvh, std::span<const Triangle>
   return out;
 }
 
-BackToBackSequences flattenOctantSequencesBackToBack(const Bvh& bvh, std::span<const Triangle> tris) {
-  BackToBackSequences out;
+uint64_t octantSequenceTexels(const Bvh& bvh) {
+  // Every box and leaf once: no need to walk the tree.
+  const uint64_t leaves = bvh.leafCount();
+  return bvh.empty() ? 0 : leaves * leafTexelCount(LeafTexels::Shared) + (bvh.nodes.size() - leaves) * kBoxTexels;
+}
+
+void writeOctantSequences(const Bvh& bvh, std::span<const Triangle> tris,
+                          const std::function<void(uint64_t first, std::span<const glm::vec4> texels)>& write) {
+  if (bvh.empty()) return;
+  const std::vector<uint32_t> subtree = sharedSubtreeTexels(bvh);
+  const uint64_t size = subtree[0];
+  std::vector<glm::vec4> chunk(kOctantWriteTexels + kBoxTexels);
   for (uint32_t octant = 0; octant < kOctants; ++octant) {
-    EscapeSequence sequence = flattenEscapeSequence(orderChildrenForOctant(bvh, octant), tris);
-    if (octant == 0) {
-      out.sequenceSize = sequence.texels.size();
-      out.floatsPerTriangle = sequence.floatsPerTriangle();
-      out.texels.reserve(kOctants * sequence.texels.size());  // every octant's is the same size
+    const glm::vec3 diagonal = octantDiagonal(octant);
+    uint64_t chunkFirst = 0;  // the chunk's first texel within the sequence
+    size_t filled = 0;
+    uint32_t at = 0;          // the texel being written, within the sequence
+    std::vector<uint32_t> stack{0};  // explicit pre-order work stack
+    while (!stack.empty()) {
+      const uint32_t index = stack.back();
+      stack.pop_back();
+      const BvhNode& node = bvh.nodes[index];
+      if (node.isLeaf()) {
+        if (node.triangle >= tris.size())
+          throw std::invalid_argument("bvh-octant: leaf " + std::to_string(index) + " names triangle " +
+                                      std::to_string(node.triangle) + " of " + std::to_string(tris.size()));
+        writeLeafTexels(chunk.data() + filled, tris[node.triangle], node.triangle, LeafTexels::Shared);
+        filled += leafTexelCount(LeafTexels::Shared);
+      } else {
+        writeBoxTexels(chunk.data() + filled, node.box, at + subtree[index]);
+        filled += kBoxTexels;
+        const size_t before = stack.size();
+        stack.insert(stack.end(), bvh.children.begin() + node.firstChild,
+                     bvh.children.begin() + node.firstChild + node.childCount);
+        sortChildrenForOctant(bvh, diagonal, stack.data() + before, node.childCount);
+        std::reverse(stack.begin() + std::ptrdiff_t(before), stack.end());  // the nearest pops first
+      }
+      at = uint32_t(chunkFirst + filled);
+      if (filled >= kOctantWriteTexels || stack.empty()) {
+        write(octant * size + chunkFirst, std::span<const glm::vec4>(chunk.data(), filled));
+        chunkFirst += filled;
+        filled = 0;
+      }
     }
-    out.texels.insert(out.texels.end(), sequence.texels.begin(), sequence.texels.end());
   }
-  return out;
 }
 
 }  // namespace passtrace

@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -47,15 +48,20 @@ Bvh bvhFromBinaryBvh(const BinaryBvh& binary, std::span<const Triangle> tris);
 Bvh orderChildrenForOctant(const Bvh& bvh, uint32_t octant);
 OctantSequences flattenOctantSequences(const Bvh& bvh, std::span<const Triangle> tris);
 
-// The same eight sequences back to back, as the GPU reads them: flattened one
-// octant at a time into one array, so that the eight apart and their
-// concatenation never coexist (the stream path's peak memory: 1,936 bytes per
-// triangle held the eight, the concatenation and the texture at once).
-struct BackToBackSequences {
-  std::vector<glm::vec4> texels;
-  uint64_t sequenceSize = 0;  // texels in one sequence
-  float floatsPerTriangle = 0;  // one sequence's (EscapeSequence::floatsPerTriangle)
-};
-BackToBackSequences flattenOctantSequencesBackToBack(const Bvh& bvh, std::span<const Triangle> tris);
+// The stream path's layout: the eight sequences back to back (sequence o at
+// texel o * octantSequenceTexels), leaves of one texel over a triangle stream
+// they share (LeafTexels::Shared, sharedTriangleTexels): eight copies of the
+// boxes but one of the triangles, 416 bytes per triangle in all against 640
+// with LeafTexels::Inline. writeOctantSequences hands them to `write` in
+// pieces of at most kOctantWriteTexels, walking the tree in each octant's
+// order without copying it, so the only whole copy is the one `write` makes
+// (the texture): before, the eight, their concatenation and the texture
+// coexisted (1,936 bytes per triangle at the peak, then 1,313).
+// Sequence o equals flattenEscapeSequence(orderChildrenForOctant(bvh, o),
+// tris, LeafTexels::Shared) texel for texel.
+inline constexpr size_t kOctantWriteTexels = size_t(1) << 16;
+uint64_t octantSequenceTexels(const Bvh& bvh);
+void writeOctantSequences(const Bvh& bvh, std::span<const Triangle> tris,
+                          const std::function<void(uint64_t first, std::span<const glm::vec4> texels)>& write);
 
 }  // namespace passtrace

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <span>
 #include <bit>
 #include <memory>
 #include <string>
@@ -68,6 +69,30 @@ TEST_F(GlTest, PagedFetchMatchesCppAddressing) {
     EXPECT_EQ(uint64_t(1) << input.pageLog2(), pageTexels);
     const std::vector<glm::vec4> result = fetchAll(input, 37, streamPagesDefine({&input}));
     for (int i = 0; i < 37; ++i) EXPECT_EQ(result[i], data[i]) << "texel " << i << ", pages of " << pageTexels;
+  }
+}
+
+// Written in pieces (bvh-octant's sequences go up octant by octant): pieces of
+// 1 to 5 texels, last first, crossing rows and pages, read back as the data;
+// a write past the end is an error naming the data.
+TEST_F(GlTest, StreamWrittenInPiecesReadsBackAsTheData) {
+  const std::vector<glm::vec4> data = numbered(37);
+  for (uint64_t pageTexels : {0u, 8u, 16u}) {
+    ConstInputStream input(data.size(), "test data", pageTexels);
+    for (size_t end = data.size(); end > 0;) {
+      const size_t count = std::min(end, end % 5 + 1);
+      input.write(end - count, std::span<const glm::vec4>(data).subspan(end - count, count));
+      end -= count;
+    }
+    const std::vector<glm::vec4> result = fetchAll(input, 37, streamPagesDefine({&input}));
+    for (int i = 0; i < 37; ++i) EXPECT_EQ(result[i], data[i]) << "texel " << i << ", pages of " << pageTexels;
+  }
+  ConstInputStream small(4, "the small stream");
+  try {
+    small.write(3, std::span<const glm::vec4>(data).first(2));
+    ADD_FAILURE() << "a write past the end was accepted";
+  } catch (const GlError& e) {
+    EXPECT_NE(std::string(e.what()).find("the small stream"), std::string::npos) << e.what();
   }
 }
 

@@ -69,19 +69,59 @@ TEST(OctantSequences, EverySequenceHoldsEveryReferenceOnce) {
   }
 }
 
-// The stream path's layout (back to back, flattened one octant at a time) is
-// the eight sequences concatenated, texel for texel.
-TEST(OctantSequences, BackToBackIsTheEightConcatenated) {
-  const std::vector<Triangle> tris = testmesh::triangleSoup(300, Aabb{glm::vec3(0.0f), glm::vec3(10.0f)}, 1.5f, 11);
+// The stream path's layout, written octant by octant in pieces, is the eight
+// shared-leaf sequences concatenated, texel for texel; 30,000 triangles make
+// every sequence span several pieces.
+TEST(OctantSequences, WrittenPiecesAreTheEightSharedLeafSequences) {
+  const std::vector<Triangle> tris = testmesh::triangleSoup(30000, Aabb{glm::vec3(0.0f), glm::vec3(50.0f)}, 1.0f, 11);
   const Bvh bvh = bvhFromBinaryBvh(buildBvhStackTree(tris, BvhBuilderKind::Sah), tris);
-  const OctantSequences apart = flattenOctantSequences(bvh, tris);
-  const BackToBackSequences together = flattenOctantSequencesBackToBack(bvh, tris);
   std::vector<glm::vec4> concatenated;
-  for (const EscapeSequence& seq : apart.sequences)
+  for (uint32_t octant = 0; octant < kOctants; ++octant) {
+    const EscapeSequence seq = flattenEscapeSequence(orderChildrenForOctant(bvh, octant), tris, LeafTexels::Shared);
+    ASSERT_EQ(seq.texels.size(), octantSequenceTexels(bvh));
     concatenated.insert(concatenated.end(), seq.texels.begin(), seq.texels.end());
-  EXPECT_EQ(together.sequenceSize, apart.sequences[0].texels.size());
-  EXPECT_EQ(together.floatsPerTriangle, apart.sequences[0].floatsPerTriangle());
-  EXPECT_TRUE(together.texels == concatenated);
+  }
+  ASSERT_GT(octantSequenceTexels(bvh), kOctantWriteTexels);
+  std::vector<glm::vec4> written(concatenated.size(), glm::vec4(-7.0f));
+  std::vector<bool> seen(written.size(), false);
+  size_t pieces = 0;
+  writeOctantSequences(bvh, tris, [&](uint64_t first, std::span<const glm::vec4> texels) {
+    ASSERT_LE(texels.size(), kOctantWriteTexels + kBoxTexels);
+    ASSERT_LE(first + texels.size(), written.size());
+    for (size_t i = 0; i < texels.size(); ++i) {
+      EXPECT_FALSE(seen[first + i]) << "texel " << first + i << " written twice";
+      seen[first + i] = true;
+      written[first + i] = texels[i];
+    }
+    ++pieces;
+  });
+  EXPECT_GT(pieces, 8u);
+  EXPECT_TRUE(written == concatenated);
+}
+
+// A shared leaf is one texel (v0, -packed id); the triangle stream holds v1, v2 at 2 id, 2 id + 1.
+TEST(OctantSequences, SharedLeavesNameTheirTriangle) {
+  const std::vector<Triangle> tris = testmesh::triangleSoup(200, Aabb{glm::vec3(0.0f), glm::vec3(10.0f)}, 1.5f, 5);
+  const Bvh bvh = bvhFromBinaryBvh(buildBvhStackTree(tris, BvhBuilderKind::Sah), tris);
+  const EscapeSequence seq = flattenEscapeSequence(bvh, tris, LeafTexels::Shared);
+  const std::vector<glm::vec4> shared = sharedTriangleTexels(tris);
+  ASSERT_EQ(shared.size(), 2 * tris.size());
+  std::vector<uint32_t> found;
+  for (uint32_t i = 0; i < seq.texels.size(); i += seq.texels[i].w >= 0.0f ? 2 : 1) {
+    if (seq.texels[i].w >= 0.0f) {
+      EXPECT_GT(unpackIndex(seq.texels[i].w), i) << "a box's escape lies after it";
+      continue;
+    }
+    const uint32_t id = unpackIndex(-seq.texels[i].w);
+    ASSERT_LT(id, tris.size());
+    EXPECT_EQ(glm::vec3(seq.texels[i]), tris[id].v0);
+    EXPECT_EQ(glm::vec3(shared[2 * id]), tris[id].v1);
+    EXPECT_EQ(glm::vec3(shared[2 * id + 1]), tris[id].v2);
+    found.push_back(id);
+  }
+  std::sort(found.begin(), found.end());
+  EXPECT_EQ(found.size(), tris.size());
+  EXPECT_TRUE(std::adjacent_find(found.begin(), found.end()) == found.end()) << "every triangle once";
 }
 
 TEST(OctantSequences, EmptyAndLoneLeafTrees) {
