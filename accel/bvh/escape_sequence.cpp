@@ -4,9 +4,9 @@
 #include <string>
 
 namespace passtrace {
-void writeLeafTexels(glm::vec4* out, const Triangle& tri, uint32_t triangle, LeafTexels leaves) {
+void writeLeafTexels(glm::vec4* out, const Triangle& tri, uint32_t triangle, uint32_t slot, LeafTexels leaves) {
   if (leaves == LeafTexels::Shared) {
-    out[0] = glm::vec4(tri.v0, -packIndex(triangle));
+    out[0] = glm::vec4(tri.v0, -packIndex(slot));
     return;
   }
   out[0] = glm::vec4(tri.v0, -1.0f);
@@ -14,17 +14,41 @@ void writeLeafTexels(glm::vec4* out, const Triangle& tri, uint32_t triangle, Lea
   out[2] = glm::vec4(tri.v2, 0.0f);
 }
 
-std::vector<glm::vec4> sharedTriangleTexels(std::span<const Triangle> tris) {
-  std::vector<glm::vec4> texels(2 * tris.size());
-  for (size_t i = 0; i < tris.size(); ++i) {
-    texels[2 * i] = glm::vec4(tris[i].v1, 0.0f);
-    texels[2 * i + 1] = glm::vec4(tris[i].v2, 0.0f);
+std::vector<uint32_t> leafSlots(const Bvh& bvh) {
+  std::vector<uint32_t> slots(bvh.nodes.size(), kNoHit);
+  uint32_t next = 0;
+  for (std::vector<uint32_t> stack = bvh.empty() ? std::vector<uint32_t>{} : std::vector<uint32_t>{0};
+       !stack.empty();) {
+    const uint32_t index = stack.back();
+    stack.pop_back();
+    const BvhNode& node = bvh.nodes[index];
+    if (node.isLeaf()) slots[index] = next++;
+    for (uint32_t c = node.childCount; c-- > 0;) stack.push_back(bvh.children[node.firstChild + c]);
+  }
+  return slots;
+}
+
+std::vector<glm::vec4> sharedTriangleTexels(const Bvh& bvh, std::span<const Triangle> tris) {
+  const std::vector<uint32_t> slots = leafSlots(bvh);
+  std::vector<glm::vec4> texels(2 * bvh.leafCount());
+  for (size_t i = 0; i < bvh.nodes.size(); ++i) {
+    const BvhNode& node = bvh.nodes[i];
+    if (!node.isLeaf()) continue;
+    if (node.triangle >= tris.size())
+      throw std::invalid_argument("sharedTriangleTexels: leaf " + std::to_string(i) + " names triangle " +
+                                  std::to_string(node.triangle) + " of " + std::to_string(tris.size()));
+    texels[2 * size_t(slots[i])] = glm::vec4(tris[node.triangle].v1, packIndex(node.triangle));
+    texels[2 * size_t(slots[i]) + 1] = glm::vec4(tris[node.triangle].v2, 0.0f);
   }
   return texels;
 }
 
-EscapeSequence flattenEscapeSequence(const Bvh& bvh, std::span<const Triangle> tris, LeafTexels leaves) {
+EscapeSequence flattenEscapeSequence(const Bvh& bvh, std::span<const Triangle> tris, LeafTexels leaves,
+                                     std::span<const uint32_t> slots) {
   const uint64_t triangleTexels = leafTexelCount(leaves);
+  const std::vector<uint32_t> ownSlots =
+      leaves == LeafTexels::Shared && slots.empty() ? leafSlots(bvh) : std::vector<uint32_t>{};
+  if (!ownSlots.empty()) slots = ownSlots;
   EscapeSequence seq;
   if (bvh.nodes.empty()) return seq;
 
@@ -62,7 +86,7 @@ EscapeSequence flattenEscapeSequence(const Bvh& bvh, std::span<const Triangle> t
       if (node.triangle >= tris.size())
         throw std::invalid_argument("flattenEscapeSequence: leaf " + std::to_string(index) + " names triangle " +
                                     std::to_string(node.triangle) + " of " + std::to_string(tris.size()));
-      writeLeafTexels(out + at, tris[node.triangle], node.triangle, leaves);
+      writeLeafTexels(out + at, tris[node.triangle], node.triangle, slots.empty() ? 0 : slots[index], leaves);
       at += uint32_t(triangleTexels);
       ++seq.triangleCount;
     } else {

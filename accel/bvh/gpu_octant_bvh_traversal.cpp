@@ -10,7 +10,7 @@ GpuOctantBvhTraversal::GpuOctantBvhTraversal(const Bvh& bvh, std::span<const Tri
                                              const GpuTraversalConfig& config, Fused fused)
     : sequenceSize_(octantSequenceTexels(bvh)),
       sequences_(kOctants * sequenceSize_, "the eight octant BVH sequences", config.maxPageTexels),
-      triangles_(sharedTriangleTexels(tris), "the octant BVH's triangles", config.maxPageTexels),
+      triangles_(sharedTriangleTexels(bvh, tris), "the octant BVH's triangles", config.maxPageTexels),
       kernel_("bvh_octant_traverse", "bvh/bvh_octant_traverse.frag", StreamKernel::Depth::Test,
               {streamPagesDefine({&sequences_, &triangles_}), triangleTestDefine(config.build.triangleTest)}),
       stats_(std::move(stats)),

@@ -120,6 +120,7 @@ void writeOctantSequences(const Bvh& bvh, std::span<const Triangle> tris,
                           const std::function<void(uint64_t first, std::span<const glm::vec4> texels)>& write) {
   if (bvh.empty()) return;
   const std::vector<uint32_t> subtree = sharedSubtreeTexels(bvh);
+  const std::vector<uint32_t> slots = leafSlots(bvh);
   const uint64_t size = subtree[0];
   std::vector<glm::vec4> chunk(kOctantWriteTexels + kBoxTexels);
   for (uint32_t octant = 0; octant < kOctants; ++octant) {
@@ -136,7 +137,7 @@ void writeOctantSequences(const Bvh& bvh, std::span<const Triangle> tris,
         if (node.triangle >= tris.size())
           throw std::invalid_argument("bvh-octant: leaf " + std::to_string(index) + " names triangle " +
                                       std::to_string(node.triangle) + " of " + std::to_string(tris.size()));
-        writeLeafTexels(chunk.data() + filled, tris[node.triangle], node.triangle, LeafTexels::Shared);
+        writeLeafTexels(chunk.data() + filled, tris[node.triangle], node.triangle, slots[index], LeafTexels::Shared);
         filled += leafTexelCount(LeafTexels::Shared);
       } else {
         writeBoxTexels(chunk.data() + filled, node.box, at + subtree[index]);

@@ -58,7 +58,7 @@ OctantSequences flattenOctantSequences(const Bvh& bvh, std::span<const Triangle>
 // (the texture): before, the eight, their concatenation and the texture
 // coexisted (1,936 bytes per triangle at the peak, then 1,313).
 // Sequence o equals flattenEscapeSequence(orderChildrenForOctant(bvh, o),
-// tris, LeafTexels::Shared) texel for texel.
+// tris, LeafTexels::Shared, leafSlots(bvh)) texel for texel.
 inline constexpr size_t kOctantWriteTexels = size_t(1) << 16;
 uint64_t octantSequenceTexels(const Bvh& bvh);
 void writeOctantSequences(const Bvh& bvh, std::span<const Triangle> tris,

@@ -1,15 +1,15 @@
 // bvh_traverse.frag's escape-index walk over the sequence of the ray's octant
 // (accel/bvh/octant_sequences.h): eight sequences of uSequenceSize texels
 // back to back, children near-first for their octant, each triangle one
-// texel (v0, -packed id) whose v1 and v2 are texels 2 id and 2 id + 1 of
-// uOctantTriangles, shared by the eight (accel/bvh/escape_sequence.h,
-// LeafTexels::Shared). The walk keeps the index inside the ray's own
+// texel (v0, -packed slot) whose (v1, packed id) and v2 are texels 2 slot and
+// 2 slot + 1 of uOctantTriangles, shared by the eight
+// (accel/bvh/escape_sequence.h, LeafTexels::Shared). The walk keeps the index inside the ray's own
 // sequence, so it resumes exactly as kk-bvh's.
 // Shared by the traversal pass (bvh_octant_traverse.frag) and the fused
 // bounce (bvh_octant_fused.frag). Needs texel_address.glsl and intersect.glsl.
 
 uniform ConstStream uSequences;        // the eight escape-index sequences
-uniform ConstStream uOctantTriangles;  // v1, v2 of each triangle, in scene order
+uniform ConstStream uOctantTriangles;  // (v1, packed id), v2 of each leaf slot
 uniform uint uSequenceSize;            // texels in one sequence: the end of traversal
 uniform int uLoopLimit;                // traversal steps per pass (tracy's -l)
 
@@ -38,14 +38,13 @@ void octantWalk(vec3 origin, vec3 direction, bool anyHit, inout uint index, inou
       if (index < uSequenceSize) first = fetchTexel(uSequences, base + index);
     }
     if (budget > 0 && index < uSequenceSize) {
-      float packedId = -first.w;
-      uint triangle = unpackIndex(packedId);
-      vec4 second = fetchTexel(uOctantTriangles, 2u * triangle);
-      vec4 third = fetchTexel(uOctantTriangles, 2u * triangle + 1u);
+      uint slot = unpackIndex(-first.w);
+      vec4 second = fetchTexel(uOctantTriangles, 2u * slot);
+      vec4 third = fetchTexel(uOctantTriangles, 2u * slot + 1u);
       steps += 1.0;
       budget -= 1;
       tests += 1.0;
-      bool found = intersectTriangle(origin, direction, first.xyz, second.xyz, third.xyz, packedId, hit);
+      bool found = intersectTriangle(origin, direction, first.xyz, second.xyz, third.xyz, second.w, hit);
       index = (found && anyHit) ? uSequenceSize : index + 1u;
     }
   }

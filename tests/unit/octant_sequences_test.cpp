@@ -76,8 +76,10 @@ TEST(OctantSequences, WrittenPiecesAreTheEightSharedLeafSequences) {
   const std::vector<Triangle> tris = testmesh::triangleSoup(30000, Aabb{glm::vec3(0.0f), glm::vec3(50.0f)}, 1.0f, 11);
   const Bvh bvh = bvhFromBinaryBvh(buildBvhStackTree(tris, BvhBuilderKind::Sah), tris);
   std::vector<glm::vec4> concatenated;
+  const std::vector<uint32_t> slots = leafSlots(bvh);
   for (uint32_t octant = 0; octant < kOctants; ++octant) {
-    const EscapeSequence seq = flattenEscapeSequence(orderChildrenForOctant(bvh, octant), tris, LeafTexels::Shared);
+    const EscapeSequence seq =
+        flattenEscapeSequence(orderChildrenForOctant(bvh, octant), tris, LeafTexels::Shared, slots);
     ASSERT_EQ(seq.texels.size(), octantSequenceTexels(bvh));
     concatenated.insert(concatenated.end(), seq.texels.begin(), seq.texels.end());
   }
@@ -99,24 +101,28 @@ TEST(OctantSequences, WrittenPiecesAreTheEightSharedLeafSequences) {
   EXPECT_TRUE(written == concatenated);
 }
 
-// A shared leaf is one texel (v0, -packed id); the triangle stream holds v1, v2 at 2 id, 2 id + 1.
+// A shared leaf is one texel (v0, -packed slot); the triangle stream holds
+// (v1, packed id) and v2 at 2 slot and 2 slot + 1, slots in depth-first order.
 TEST(OctantSequences, SharedLeavesNameTheirTriangle) {
   const std::vector<Triangle> tris = testmesh::triangleSoup(200, Aabb{glm::vec3(0.0f), glm::vec3(10.0f)}, 1.5f, 5);
   const Bvh bvh = bvhFromBinaryBvh(buildBvhStackTree(tris, BvhBuilderKind::Sah), tris);
   const EscapeSequence seq = flattenEscapeSequence(bvh, tris, LeafTexels::Shared);
-  const std::vector<glm::vec4> shared = sharedTriangleTexels(tris);
+  const std::vector<glm::vec4> shared = sharedTriangleTexels(bvh, tris);
   ASSERT_EQ(shared.size(), 2 * tris.size());
   std::vector<uint32_t> found;
+  uint32_t nextSlot = 0;
   for (uint32_t i = 0; i < seq.texels.size(); i += seq.texels[i].w >= 0.0f ? 2 : 1) {
     if (seq.texels[i].w >= 0.0f) {
       EXPECT_GT(unpackIndex(seq.texels[i].w), i) << "a box's escape lies after it";
       continue;
     }
-    const uint32_t id = unpackIndex(-seq.texels[i].w);
+    const uint32_t slot = unpackIndex(-seq.texels[i].w);
+    EXPECT_EQ(slot, nextSlot++) << "slots in depth-first order";
+    const uint32_t id = unpackIndex(shared[2 * slot].w);
     ASSERT_LT(id, tris.size());
     EXPECT_EQ(glm::vec3(seq.texels[i]), tris[id].v0);
-    EXPECT_EQ(glm::vec3(shared[2 * id]), tris[id].v1);
-    EXPECT_EQ(glm::vec3(shared[2 * id + 1]), tris[id].v2);
+    EXPECT_EQ(glm::vec3(shared[2 * slot]), tris[id].v1);
+    EXPECT_EQ(glm::vec3(shared[2 * slot + 1]), tris[id].v2);
     found.push_back(id);
   }
   std::sort(found.begin(), found.end());
