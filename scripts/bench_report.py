@@ -220,6 +220,12 @@ def plot_scene(out, scene, by, structures, params):
     return name
 
 
+def failed_runs_section(records):
+    """The report's "Failed runs" lines: each (meta, record) whose record says status "error"."""
+    failed = [(meta["key"], rec.get("error")) for meta, rec in records if rec and rec.get("status") == "error"]
+    return ["## Failed runs", ""] + [f"- `{k}`: {e}" for k, e in failed] + [""] if failed else []
+
+
 def md_table(header, rows):
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     lines += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]

@@ -53,6 +53,7 @@ import threading
 import time
 
 import bench_ranks
+import bench_report
 from bench_report import write_atomically
 from passtrace_registry import scene_available
 from report_tables import field, md_table, num
@@ -689,9 +690,7 @@ def write_report(out_dir, results, records, plan):
     if notes:
         lines += ["## Notes: runs that did not fit or failed", ""]
         lines += [f"{i + 1}. {n}" for i, n in enumerate(notes)] + [""]
-    failed = [(m_["key"], rec.get("error")) for m_, rec in records if rec and rec.get("status") == "error"]
-    if failed:
-        lines += ["## Failed runs", ""] + [f"- `{k}`: {e}" for k, e in failed] + [""]
+    lines += bench_report.failed_runs_section(records)
     lines += ["## Commands", "", "Each run's command line and peak memory are in `results.json` "
               "(`runs[].command`, `runs[].peak_rss_bytes`)."]
     write_atomically(out_dir / "REPORT.md", "\n".join(lines) + "\n")

@@ -37,6 +37,7 @@ import pathlib
 import subprocess
 import bench_ranks
 import bench_stages
+import bench_report
 from bench_report import write_atomically
 
 SCENES = ["bunny", "kitchen", "robots"]
@@ -361,9 +362,7 @@ def write_report(out_dir, results, records, baselines, scenes):
     lines += bench_stages.section(baselines.get("stages"), num, md_table)
     if baselines["errors"]:
         lines += ["## Baselines that failed", ""] + [f"- {e}" for e in baselines["errors"]] + [""]
-    failed = [(m_["key"], rec.get("error")) for m_, rec in records if rec and rec.get("status") == "error"]
-    if failed:
-        lines += ["## Failed runs", ""] + [f"- `{k}`: {e}" for k, e in failed] + [""]
+    lines += bench_report.failed_runs_section(records)
     lines += ["## Commands", "", "Each run's command line is in `results.json` (`runs[].command`); the "
               "baselines' output is in `results.json` (`baselines`)."]
     write_atomically(out_dir / "REPORT.md", "\n".join(lines) + "\n")
