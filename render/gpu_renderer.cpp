@@ -42,7 +42,7 @@ GpuRenderer::GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width,
       traversal_(traversal),
       rays_(width, height, kRaySurfaceCount),
       maxPageTexels_(maxPageTexels),
-      triangles_(std::make_unique<ConstInputStream>(triangleShadingTexels(scene), "triangle shading data", maxPageTexels)),
+      triangles_(triangleShadingStream(scene, maxPageTexels)),
       materials_(materialTexels(scene), "materials", maxPageTexels),
       raygen_("raygen", "raygen.frag"),
       cull_("cull", "cull.frag", StreamKernel::Depth::Cull),
@@ -142,7 +142,7 @@ void GpuRenderer::bindThesisShading() {
 void GpuRenderer::trianglesMoved() {
   // Same size, same pages: the shading kernel's STREAM_PAGES still holds.
   // An animated light follows too.
-  triangles_ = std::make_unique<ConstInputStream>(triangleShadingTexels(scene_), "triangle shading data", maxPageTexels_);
+  triangles_ = triangleShadingStream(scene_, maxPageTexels_);
   bindThesisShading();
   mixLightChanged();
 }

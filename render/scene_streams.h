@@ -5,15 +5,21 @@
 // with the geometric normal standing in for absent vertex normals; per
 // material 2 texels (diffuse, 0) (mirror reflectance, 0).
 
+#include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "scenes/scene.h"
+#include "stream/const_input_stream.h"
 
 namespace passtrace {
 
 std::vector<glm::vec4> triangleShadingTexels(const Scene& scene);
+// The same as a stream, written in pieces of 65,536 triangles: the whole
+// array never exists beside its texture (64 bytes per triangle less at the peak).
+std::unique_ptr<ConstInputStream> triangleShadingStream(const Scene& scene, uint64_t maxPageTexels);
 std::vector<glm::vec4> materialTexels(const Scene& scene);
 // --shading whitted (kernels_glsl/shade_whitted.frag): 4 texels per material
 //   (diffuse, 0) (mirror reflectance, 0) (Phong Ks, shininess) (transmission, ior, 0, 0)
