@@ -134,6 +134,15 @@ def main():
         after = {p.name: p.stat().st_mtime_ns for p in (out / "runs").glob("*.json")}
         check(before == after and len(before) >= len(expected), "a rerun leaves every record as it was")
         check(len(again.get("runs", [])) == len(results.get("runs", [])), "a rerun reports the same runs")
+        # Bad sizes: one line naming the option, a non-zero exit, no output folder.
+        for bad in ("abc", "0"):
+            bad_out = pathlib.Path(work) / f"bad_{bad}"
+            proc = subprocess.run([sys.executable, str(BENCH), "--scale", "--triangles-list", bad, "--out",
+                                   str(bad_out), "--binary", str(args.binary)], capture_output=True, text=True,
+                                  timeout=60)
+            lines = proc.stderr.strip().splitlines()
+            check(proc.returncode != 0 and len(lines) == 1 and "--triangles-list" in lines[0]
+                  and not bad_out.exists(), f"--triangles-list {bad}: one line, exit {proc.returncode}: {lines}")
     return summary()
 
 
