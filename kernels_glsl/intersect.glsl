@@ -15,16 +15,22 @@ vec3 safeInverse(vec3 d) {
 // when empty. A ray parallel to a slab (|invDir| > 1e19, direction component
 // below 1e-19) is inside it for all t or for none: with the tiny stand-in
 // alone an origin lying exactly on the max face would miss.
-bool clipToBox(vec3 origin, vec3 invDir, vec3 lo, vec3 hi, out float tNear, out float tFar) {
+// `parallel` given apart: for rays whose inverse direction is scaled (box_grid.glsl).
+bool clipToBox(vec3 origin, vec3 invDir, bvec3 parallel, vec3 lo, vec3 hi, out float tNear, out float tFar) {
   precise vec3 t0 = (lo - origin) * invDir;
   precise vec3 t1 = (hi - origin) * invDir;
-  bvec3 parallel = greaterThan(abs(invDir), vec3(1e19));
   bvec3 inside = equal(step(lo, origin) * step(origin, hi), vec3(1.0));
   vec3 tSmall = mix(min(t0, t1), mix(vec3(INF), vec3(-INF), inside), parallel);
   vec3 tLarge = mix(max(t0, t1), mix(vec3(-INF), vec3(INF), inside), parallel);
   tNear = max(max(tSmall.x, tSmall.y), tSmall.z);
   tFar = min(min(tLarge.x, tLarge.y), tLarge.z);
   return tNear <= tFar;
+}
+
+bvec3 parallelSlabs(vec3 invDir) { return greaterThan(abs(invDir), vec3(1e19)); }
+
+bool clipToBox(vec3 origin, vec3 invDir, vec3 lo, vec3 hi, out float tNear, out float tFar) {
+  return clipToBox(origin, invDir, parallelSlabs(invDir), lo, hi, tNear, tFar);
 }
 
 // Does the ray enter [lo, hi] before tBest, and not entirely behind it?

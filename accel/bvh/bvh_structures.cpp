@@ -190,9 +190,10 @@ std::unique_ptr<GpuTraversal> makeOctantStream(std::span<const Triangle> tris, c
   const auto start = std::chrono::steady_clock::now();
   OctantTree tree = buildOctantTree(tris, config.build);
   const uint64_t texels = octantSequenceTexels(tree.bvh);
-  // Table 3's accounting (8 floats per box, triangles excluded), as one sequence's.
-  const float floatsPerSequence =
-      tris.empty() ? 0.0f : 8.0f * float(tree.bvh.internalCount()) / float(tree.bvh.leafCount());
+  // Table 3's accounting (floats per box, triangles excluded), as one sequence's: boxes of one quantized texel.
+  const float floatsPerSequence = tris.empty() ? 0.0f
+                                               : 4.0f * float(kOctantBoxTexels) * float(tree.bvh.internalCount()) /
+                                                     float(tree.bvh.leafCount());
   finishOctantStats(tree.stats, start, floatsPerSequence, texels);
   tree.stats.structureBytes += 2 * tris.size() * sizeof(glm::vec4);  // the shared triangle stream
   if (fused == GpuOctantBvhTraversal::Fused::Yes) tree.stats.name = "bvh-octant-fused";

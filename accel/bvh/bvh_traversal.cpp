@@ -10,14 +10,18 @@ bool stepEscapeSequence(const EscapeSequence& seq, const Ray& ray, bool anyHit, 
   const glm::vec4* texels = seq.texels.data();
   const auto size = static_cast<uint32_t>(seq.texels.size());
   uint32_t idx = cursor.index;
+  const uint32_t boxTexels = seq.grid ? 1 : 2;
+  const GridRay gridRay = seq.grid ? seq.grid->ray(ray.origin, invDir) : GridRay{};
   for (uint32_t step = 0; step < maxSteps && idx < size; ++step) {
     const glm::vec4 t0 = texels[idx];
-    const glm::vec4 t1 = texels[idx + 1];
     ++cursor.stats.steps;
     if (t0.w >= 0.0f) {  // a box; w is its packed escape index
-      const Aabb box{glm::vec3(t0), glm::vec3(t1)};
-      idx = intersectsBox(ray.origin, invDir, box, cursor.best.t) ? idx + 2 : unpackIndex(t0.w);
+      const bool enter = seq.grid ? BoxGrid::intersects(gridRay, glm::vec3(t0), cursor.best.t)
+                                  : intersectsBox(ray.origin, invDir, {glm::vec3(t0), glm::vec3(texels[idx + 1])},
+                                                  cursor.best.t);
+      idx = enter ? idx + boxTexels : unpackIndex(t0.w);
     } else {  // a triangle
+      const glm::vec4 t1 = texels[idx + 1];
       const glm::vec4 t2 = texels[idx + 2];
       ++cursor.stats.triangleTests;
       const Triangle tri{glm::vec3(t0), glm::vec3(t1), glm::vec3(t2)};

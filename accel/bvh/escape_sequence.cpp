@@ -44,13 +44,15 @@ std::vector<glm::vec4> sharedTriangleTexels(const Bvh& bvh, std::span<const Tria
 }
 
 EscapeSequence flattenEscapeSequence(const Bvh& bvh, std::span<const Triangle> tris, LeafTexels leaves,
-                                     std::span<const uint32_t> slots) {
+                                     std::span<const uint32_t> slots, const BoxGrid* grid) {
   const uint64_t triangleTexels = leafTexelCount(leaves);
   const std::vector<uint32_t> ownSlots =
       leaves == LeafTexels::Shared && slots.empty() ? leafSlots(bvh) : std::vector<uint32_t>{};
   if (!ownSlots.empty()) slots = ownSlots;
   EscapeSequence seq;
+  if (grid) seq.grid = *grid;
   if (bvh.nodes.empty()) return seq;
+  const uint64_t boxTexels = boxTexelCount(grid);
 
   // Pre-order node list (explicit stack, children pushed in reverse so they
   // pop in stored order); it is also the texel order.
@@ -69,7 +71,7 @@ EscapeSequence flattenEscapeSequence(const Bvh& bvh, std::span<const Triangle> t
   std::vector<uint64_t> subtree(bvh.nodes.size(), 0);
   for (auto it = preorder.rbegin(); it != preorder.rend(); ++it) {
     const BvhNode& node = bvh.nodes[*it];
-    uint64_t size = node.isLeaf() ? triangleTexels : kBoxTexels;
+    uint64_t size = node.isLeaf() ? triangleTexels : boxTexels;
     for (uint32_t c = 0; c < node.childCount; ++c) size += subtree[bvh.children[node.firstChild + c]];
     subtree[*it] = size;
   }
@@ -91,8 +93,8 @@ EscapeSequence flattenEscapeSequence(const Bvh& bvh, std::span<const Triangle> t
       ++seq.triangleCount;
     } else {
       const auto escape = static_cast<uint32_t>(at + subtree[index]);
-      writeBoxTexels(out + at, node.box, escape);
-      at += kBoxTexels;
+      writeBoxTexels(out + at, node.box, escape, grid);
+      at += uint32_t(boxTexels);
       ++seq.boxCount;
     }
   }

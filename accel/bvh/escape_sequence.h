@@ -27,13 +27,19 @@
 // the bunny). packIndex is never 0, so w < 0 still marks a triangle.
 // Packed indices are positive floats (stream/texel_address.h), so w >= 0
 // tells a box from a triangle with the first read.
+//
+// With a BoxGrid (bvh-octant, whose eight sequences copy every box) a box is
+// one texel, its planes quantized outwards (accel/bvh/box_grid.h):
+//     [i]   (grid planes x, y, z, packIndex(escape))
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "accel/bvh/box_grid.h"
 #include "accel/bvh/bvh.h"
 #include "accel/geometry/geometry.h"
 #include "stream/texel_address.h"
@@ -44,17 +50,20 @@ struct EscapeSequence {
   std::vector<glm::vec4> texels;
   uint32_t boxCount = 0;       // internal nodes
   uint32_t triangleCount = 0;  // leaves
+  std::optional<BoxGrid> grid; // set: boxes of one quantized texel
 
-  // Memory overhead as the thesis counts it (Table 3): 8 floats per box,
-  // triangles excluded as every structure stores them. A binary tree with one
-  // triangle per leaf has N - 1 boxes, giving 8 (N - 1) / N.
+  // Memory overhead as the thesis counts it (Table 3): 8 floats per box (4
+  // quantized), triangles excluded as every structure stores them. A binary
+  // tree with one triangle per leaf has N - 1 boxes, giving 8 (N - 1) / N.
   float floatsPerTriangle() const {
-    return triangleCount == 0 ? 0.0f : 8.0f * static_cast<float>(boxCount) / static_cast<float>(triangleCount);
+    const float perBox = grid ? 4.0f : 8.0f;
+    return triangleCount == 0 ? 0.0f : perBox * static_cast<float>(boxCount) / static_cast<float>(triangleCount);
   }
 };
 
 enum class LeafTexels { Inline, Shared };
-inline constexpr uint64_t kBoxTexels = 2;
+inline constexpr uint64_t kBoxTexels = 2;  // full precision; one with a BoxGrid
+inline constexpr uint64_t boxTexelCount(const BoxGrid* grid) { return grid ? 1 : kBoxTexels; }
 inline constexpr uint64_t leafTexelCount(LeafTexels leaves) { return leaves == LeafTexels::Inline ? 3 : 1; }
 // packIndex is valid below this; a sequence's texel indices must stay under it.
 inline constexpr uint64_t kMaxSequenceTexels = 0x7F000000u;
@@ -63,12 +72,17 @@ inline constexpr uint64_t kMaxSequenceTexels = 0x7F000000u;
 // leaf whose triangle index is outside tris, std::length_error when the
 // sequence would exceed the packable index range.
 // LeafTexels::Shared takes the slots (leafSlots) of the tree the stream was
-// made from; empty: `bvh`'s own.
+// made from; empty: `bvh`'s own. With `grid`, boxes are quantized to it.
 EscapeSequence flattenEscapeSequence(const Bvh& bvh, std::span<const Triangle> tris,
-                                     LeafTexels leaves = LeafTexels::Inline, std::span<const uint32_t> slots = {});
+                                     LeafTexels leaves = LeafTexels::Inline, std::span<const uint32_t> slots = {},
+                                     const BoxGrid* grid = nullptr);
 
-// The texels of a box and of a leaf in either layout.
-inline void writeBoxTexels(glm::vec4* out, const Aabb& box, uint32_t escape) {
+// The texels of a box (boxTexelCount(grid) of them) and of a leaf in either layout.
+inline void writeBoxTexels(glm::vec4* out, const Aabb& box, uint32_t escape, const BoxGrid* grid = nullptr) {
+  if (grid) {
+    out[0] = glm::vec4(grid->encode(box), packIndex(escape));
+    return;
+  }
   out[0] = glm::vec4(box.min, packIndex(escape));
   out[1] = glm::vec4(box.max, 0.0f);
 }

@@ -9,6 +9,7 @@ namespace passtrace {
 GpuOctantBvhTraversal::GpuOctantBvhTraversal(const Bvh& bvh, std::span<const Triangle> tris, AccelStats stats,
                                              const GpuTraversalConfig& config, Fused fused)
     : sequenceSize_(octantSequenceTexels(bvh)),
+      grid_(octantBoxGrid(bvh)),
       sequences_(kOctants * sequenceSize_, "the eight octant BVH sequences", config.maxPageTexels),
       triangles_(sharedTriangleTexels(bvh, tris), "the octant BVH's triangles", config.maxPageTexels),
       kernel_("bvh_octant_traverse", "bvh/bvh_octant_traverse.frag", StreamKernel::Depth::Test,
@@ -32,6 +33,9 @@ void GpuOctantBvhTraversal::bindFused(StreamKernel& kernel) const {
   kernel.bindInput("uOctantTriangles", triangles_);
   kernel.set("uSequenceSize", static_cast<uint32_t>(sequenceSize_));
   kernel.set("uLoopLimit", loopLimit_);
+  kernel.set("uBoxGridOrigin", grid_.origin);
+  kernel.set("uBoxGridStep", grid_.step);
+  kernel.set("uBoxGridInvStep", grid_.invStep);
 }
 
 uint64_t GpuOctantBvhTraversal::trace(InOutStream& rays, uint64_t active, const std::function<uint64_t()>& retire) {

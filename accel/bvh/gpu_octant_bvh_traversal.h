@@ -28,6 +28,7 @@ class GpuOctantBvhTraversal final : public GpuTraversal {
 
  private:
   uint64_t sequenceSize_;
+  BoxGrid grid_;
   ConstInputStream sequences_;
   ConstInputStream triangles_;
   StreamKernel kernel_;

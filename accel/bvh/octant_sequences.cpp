@@ -84,7 +84,7 @@ std::vector<uint32_t> sharedSubtreeTexels(const Bvh& bvh) {
   std::vector<uint32_t> subtree(bvh.nodes.size(), 0);
   for (auto it = preorder.rbegin(); it != preorder.rend(); ++it) {
     const BvhNode& node = bvh.nodes[*it];
-    uint64_t size = node.isLeaf() ? leafTexelCount(LeafTexels::Shared) : kBoxTexels;
+    uint64_t size = node.isLeaf() ? leafTexelCount(LeafTexels::Shared) : kOctantBoxTexels;
     for (uint32_t c = 0; c < node.childCount; ++c) size += subtree[bvh.children[node.firstChild + c]];
     if (size >= kMaxSequenceTexels)
       throw std::length_error("bvh-octant: a sequence of " + std::to_string(size) +
@@ -103,17 +103,21 @@ Bvh orderChildrenForOctant(const Bvh& bvh, uint32_t octant) {
   return ordered;
 }
 
+BoxGrid octantBoxGrid(const Bvh& bvh) { return bvh.empty() ? BoxGrid{} : BoxGrid::over(bvh.nodes[0].box); }
+
 OctantSequences flattenOctantSequences(const Bvh& bvh, std::span<const Triangle> tris) {
   OctantSequences out;
+  const BoxGrid grid = octantBoxGrid(bvh);
   for (uint32_t octant = 0; octant < kOctants; ++octant)
-    out.sequences[octant] = flattenEscapeSequence(orderChildrenForOctant(bvh, octant), tris);
+    out.sequences[octant] = flattenEscapeSequence(orderChildrenForOctant(bvh, octant), tris, LeafTexels::Inline, {},
+                                                  &grid);
   return out;
 }
 
 uint64_t octantSequenceTexels(const Bvh& bvh) {
   // Every box and leaf once: no need to walk the tree.
   const uint64_t leaves = bvh.leafCount();
-  return bvh.empty() ? 0 : leaves * leafTexelCount(LeafTexels::Shared) + (bvh.nodes.size() - leaves) * kBoxTexels;
+  return bvh.empty() ? 0 : leaves * leafTexelCount(LeafTexels::Shared) + (bvh.nodes.size() - leaves) * kOctantBoxTexels;
 }
 
 void writeOctantSequences(const Bvh& bvh, std::span<const Triangle> tris,
@@ -122,7 +126,8 @@ void writeOctantSequences(const Bvh& bvh, std::span<const Triangle> tris,
   const std::vector<uint32_t> subtree = sharedSubtreeTexels(bvh);
   const std::vector<uint32_t> slots = leafSlots(bvh);
   const uint64_t size = subtree[0];
-  std::vector<glm::vec4> chunk(kOctantWriteTexels + kBoxTexels);
+  const BoxGrid grid = octantBoxGrid(bvh);
+  std::vector<glm::vec4> chunk(kOctantWriteTexels + kOctantBoxTexels);
   for (uint32_t octant = 0; octant < kOctants; ++octant) {
     const glm::vec3 diagonal = octantDiagonal(octant);
     uint64_t chunkFirst = 0;  // the chunk's first texel within the sequence
@@ -140,8 +145,8 @@ void writeOctantSequences(const Bvh& bvh, std::span<const Triangle> tris,
         writeLeafTexels(chunk.data() + filled, tris[node.triangle], node.triangle, slots[index], LeafTexels::Shared);
         filled += leafTexelCount(LeafTexels::Shared);
       } else {
-        writeBoxTexels(chunk.data() + filled, node.box, at + subtree[index]);
-        filled += kBoxTexels;
+        writeBoxTexels(chunk.data() + filled, node.box, at + subtree[index], &grid);
+        filled += kOctantBoxTexels;
         const size_t before = stack.size();
         stack.insert(stack.end(), bvh.children.begin() + node.firstChild,
                      bvh.children.begin() + node.firstChild + node.childCount);

@@ -9,7 +9,10 @@
 // axis) with one order per octant instead.
 //
 // The eight sequences have the same size (the same tree, reordered), so the
-// GPU stores them back to back and a ray reads sequence o at o * size.
+// GPU stores them back to back and a ray reads sequence o at o * size. Their
+// boxes are quantized to one grid over the root's box (octantBoxGrid), a texel
+// each: eight copies of full-precision boxes were 256 of the stream path's 607
+// bytes per triangle.
 
 #include <array>
 #include <cstdint>
@@ -46,19 +49,23 @@ Bvh bvhFromBinaryBvh(const BinaryBvh& binary, std::span<const Triangle> tris);
 // Children of each internal node sorted by their box centres projected on the
 // octant's diagonal (+-1, +-1, +-1), nearest first; ties keep stored order.
 Bvh orderChildrenForOctant(const Bvh& bvh, uint32_t octant);
+// The grid every sequence of `bvh` quantizes its boxes to: over the root's box.
+BoxGrid octantBoxGrid(const Bvh& bvh);
+inline constexpr uint64_t kOctantBoxTexels = 1;
+// The CPU row's sequences: triangles inline (LeafTexels::Inline), quantized boxes.
 OctantSequences flattenOctantSequences(const Bvh& bvh, std::span<const Triangle> tris);
 
 // The stream path's layout: the eight sequences back to back (sequence o at
 // texel o * octantSequenceTexels), leaves of one texel over a triangle stream
 // they share (LeafTexels::Shared, sharedTriangleTexels): eight copies of the
-// boxes but one of the triangles, 416 bytes per triangle in all against 640
-// with LeafTexels::Inline. writeOctantSequences hands them to `write` in
+// boxes but one of the triangles, 288 bytes per triangle in all (416 with
+// full-precision boxes, 640 with LeafTexels::Inline too). writeOctantSequences hands them to `write` in
 // pieces of at most kOctantWriteTexels, walking the tree in each octant's
 // order without copying it, so the only whole copy is the one `write` makes
 // (the texture): before, the eight, their concatenation and the texture
 // coexisted (1,936 bytes per triangle at the peak, then 1,313).
 // Sequence o equals flattenEscapeSequence(orderChildrenForOctant(bvh, o),
-// tris, LeafTexels::Shared, leafSlots(bvh)) texel for texel.
+// tris, LeafTexels::Shared, leafSlots(bvh), &octantBoxGrid(bvh)) texel for texel.
 inline constexpr size_t kOctantWriteTexels = size_t(1) << 16;
 uint64_t octantSequenceTexels(const Bvh& bvh);
 void writeOctantSequences(const Bvh& bvh, std::span<const Triangle> tris,

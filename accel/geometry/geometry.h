@@ -85,13 +85,16 @@ inline constexpr float kParallelInverse = 1e19f;
 
 // The interval [tNear, tFar] where the ray's line is inside the box; false
 // when it is empty. kernels_glsl/clip_box.glsl computes the same.
-inline bool clipToBox(const glm::vec3& origin, const glm::vec3& invDir, const Aabb& box, float& tNear, float& tFar) {
+// `parallel` names the slabs the ray is parallel to: given apart for rays whose
+// inverse direction is scaled (accel/bvh/box_grid.h's grid units).
+inline bool clipToBox(const glm::vec3& origin, const glm::vec3& invDir, const glm::bvec3& parallel, const Aabb& box,
+                      float& tNear, float& tFar) {
   const glm::vec3 t0 = (box.min - origin) * invDir;
   const glm::vec3 t1 = (box.max - origin) * invDir;
   glm::vec3 tSmall = glm::min(t0, t1);
   glm::vec3 tLarge = glm::max(t0, t1);
   for (int k = 0; k < 3; ++k) {
-    if (std::fabs(invDir[k]) > kParallelInverse) {
+    if (parallel[k]) {
       const bool inside = origin[k] >= box.min[k] && origin[k] <= box.max[k];
       tSmall[k] = inside ? -kInfinity : kInfinity;
       tLarge[k] = inside ? kInfinity : -kInfinity;
@@ -100,6 +103,14 @@ inline bool clipToBox(const glm::vec3& origin, const glm::vec3& invDir, const Aa
   tNear = std::max(std::max(tSmall.x, tSmall.y), tSmall.z);
   tFar = std::min(std::min(tLarge.x, tLarge.y), tLarge.z);
   return tNear <= tFar;
+}
+
+inline glm::bvec3 parallelSlabs(const glm::vec3& invDir) {
+  return glm::greaterThan(glm::abs(invDir), glm::vec3(kParallelInverse));
+}
+
+inline bool clipToBox(const glm::vec3& origin, const glm::vec3& invDir, const Aabb& box, float& tNear, float& tFar) {
+  return clipToBox(origin, invDir, parallelSlabs(invDir), box, tNear, tFar);
 }
 
 // The BVHs' box test is conservative (Ize, "Robust BVH Ray Traversal", JCGT

@@ -3,10 +3,12 @@
 // back to back, children near-first for their octant, each triangle one
 // texel (v0, -packed slot) whose (v1, packed id) and v2 are texels 2 slot and
 // 2 slot + 1 of uOctantTriangles, shared by the eight
-// (accel/bvh/escape_sequence.h, LeafTexels::Shared). The walk keeps the index inside the ray's own
-// sequence, so it resumes exactly as kk-bvh's.
+// (accel/bvh/escape_sequence.h, LeafTexels::Shared), each box one texel of
+// grid planes (box_grid.glsl). The walk keeps the index inside the
+// ray's own sequence, so it resumes exactly as kk-bvh's.
 // Shared by the traversal pass (bvh_octant_traverse.frag) and the fused
 // bounce (bvh_octant_fused.frag). Needs texel_address.glsl and intersect.glsl.
+#include "bvh/box_grid.glsl"
 
 uniform ConstStream uSequences;        // the eight escape-index sequences
 uniform ConstStream uOctantTriangles;  // (v1, packed id), v2 of each leaf slot
@@ -22,7 +24,7 @@ uint rayOctant(vec3 direction) {
 // ray is done. `hit` is (t, u, v, packed id) as intersectTriangle keeps it.
 void octantWalk(vec3 origin, vec3 direction, bool anyHit, inout uint index, inout float steps, inout float tests,
                 inout vec4 hit) {
-  vec3 invDir = safeInverse(direction);
+  GridRay grid = gridRay(origin, safeInverse(direction));
   uint base = rayOctant(direction) * uSequenceSize;
   int budget = uLoopLimit;
   while (budget > 0 && index < uSequenceSize) {
@@ -30,11 +32,10 @@ void octantWalk(vec3 origin, vec3 direction, bool anyHit, inout uint index, inou
     // the triangle test stays out of this loop and runs once per triangle below.
     vec4 first = fetchTexel(uSequences, base + index);
     while (budget > 0 && index < uSequenceSize && first.w >= 0.0) {
-      vec4 second = fetchTexel(uSequences, base + index + 1u);
       steps += 1.0;
       budget -= 1;
-      bool enter = intersectsBox(origin, invDir, first.xyz, second.xyz, hit.x);
-      index = enter ? index + 2u : unpackIndex(first.w);
+      bool enter = intersectsGridBox(grid, first.xyz, hit.x);
+      index = enter ? index + 1u : unpackIndex(first.w);
       if (index < uSequenceSize) first = fetchTexel(uSequences, base + index);
     }
     if (budget > 0 && index < uSequenceSize) {

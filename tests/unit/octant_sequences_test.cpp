@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <random>
 #include <vector>
 
+#include "accel/brute_force.h"
 #include "accel/bvh/bvh_traversal.h"
 #include "accel/bvh/octant_sequences.h"
 #include "accel/bvh_stack/bvh_stack_structure.h"
@@ -62,7 +64,7 @@ TEST(OctantSequences, EverySequenceHoldsEveryReferenceOnce) {
   for (const EscapeSequence& seq : seqs.sequences) {
     EXPECT_EQ(seq.texels.size(), seqs.sequences[0].texels.size());
     std::vector<uint32_t> found;
-    for (uint32_t i = 0; i < seq.texels.size(); i += seq.texels[i].w >= 0.0f ? 2 : 3)
+    for (uint32_t i = 0; i < seq.texels.size(); i += seq.texels[i].w >= 0.0f ? kOctantBoxTexels : 3)
       if (seq.texels[i].w < 0.0f) found.push_back(unpackIndex(seq.texels[i + 1].w));
     std::sort(found.begin(), found.end());
     EXPECT_EQ(found, expected);
@@ -70,16 +72,17 @@ TEST(OctantSequences, EverySequenceHoldsEveryReferenceOnce) {
 }
 
 // The stream path's layout, written octant by octant in pieces, is the eight
-// shared-leaf sequences concatenated, texel for texel; 30,000 triangles make
+// shared-leaf sequences concatenated, texel for texel; 45,000 triangles make
 // every sequence span several pieces.
 TEST(OctantSequences, WrittenPiecesAreTheEightSharedLeafSequences) {
-  const std::vector<Triangle> tris = testmesh::triangleSoup(30000, Aabb{glm::vec3(0.0f), glm::vec3(50.0f)}, 1.0f, 11);
+  const std::vector<Triangle> tris = testmesh::triangleSoup(45000, Aabb{glm::vec3(0.0f), glm::vec3(60.0f)}, 1.0f, 11);
   const Bvh bvh = bvhFromBinaryBvh(buildBvhStackTree(tris, BvhBuilderKind::Sah), tris);
   std::vector<glm::vec4> concatenated;
   const std::vector<uint32_t> slots = leafSlots(bvh);
+  const BoxGrid grid = octantBoxGrid(bvh);
   for (uint32_t octant = 0; octant < kOctants; ++octant) {
     const EscapeSequence seq =
-        flattenEscapeSequence(orderChildrenForOctant(bvh, octant), tris, LeafTexels::Shared, slots);
+        flattenEscapeSequence(orderChildrenForOctant(bvh, octant), tris, LeafTexels::Shared, slots, &grid);
     ASSERT_EQ(seq.texels.size(), octantSequenceTexels(bvh));
     concatenated.insert(concatenated.end(), seq.texels.begin(), seq.texels.end());
   }
@@ -88,7 +91,7 @@ TEST(OctantSequences, WrittenPiecesAreTheEightSharedLeafSequences) {
   std::vector<bool> seen(written.size(), false);
   size_t pieces = 0;
   writeOctantSequences(bvh, tris, [&](uint64_t first, std::span<const glm::vec4> texels) {
-    ASSERT_LE(texels.size(), kOctantWriteTexels + kBoxTexels);
+    ASSERT_LE(texels.size(), kOctantWriteTexels + kOctantBoxTexels);
     ASSERT_LE(first + texels.size(), written.size());
     for (size_t i = 0; i < texels.size(); ++i) {
       EXPECT_FALSE(seen[first + i]) << "texel " << first + i << " written twice";
@@ -128,6 +131,56 @@ TEST(OctantSequences, SharedLeavesNameTheirTriangle) {
   std::sort(found.begin(), found.end());
   EXPECT_EQ(found.size(), tris.size());
   EXPECT_TRUE(std::adjacent_find(found.begin(), found.end()) == found.end()) << "every triangle once";
+}
+
+// Rays from afar at every third triangle's centre, and as many beside them
+// (a fifth of the way across, some hit elsewhere, some miss).
+std::vector<Ray> raysAt(std::span<const Triangle> tris, uint32_t seed) {
+  const Aabb bounds = testmesh::boundsOf(tris);
+  const float reach = 3.0f * glm::length(bounds.max - bounds.min);
+  std::mt19937 rng(seed);
+  std::normal_distribution<float> n(0.0f, 1.0f);
+  std::vector<Ray> rays;
+  for (size_t i = 0; i < tris.size(); i += 3) {
+    const glm::vec3 d = glm::normalize(glm::vec3(n(rng), n(rng), n(rng)));
+    const glm::vec3 c = (tris[i].v0 + tris[i].v1 + tris[i].v2) / 3.0f;
+    rays.push_back(Ray{c - reach * d, d});
+    const glm::vec3 side = glm::normalize(glm::cross(d, glm::vec3(0.3f, 0.5f, 0.8f)));
+    rays.push_back(Ray{c - reach * d + 0.2f * reach * side, d});
+  }
+  return rays;
+}
+
+// Quantized boxes are conservative at every scale and far from the origin:
+// the walk finds what brute force finds, small, large, offset or flat (the
+// grid itself down to 1e-30 and up to 1e30: box_grid_test.cpp; a triangle
+// test's products (cubes of lengths) leave float precision beyond about 1e+-10).
+TEST(OctantSequences, QuantizedBoxesLoseNoHitAtAnyScale) {
+  const struct {
+    float scale;
+    glm::vec3 offset;
+  } placements[] = {{1.0f, glm::vec3(0.0f)},   {1e-9f, glm::vec3(0.0f)}, {1e9f, glm::vec3(0.0f)},
+                    {1e-2f, glm::vec3(1e4f)}, {1.0f, glm::vec3(-3e4f, 7.0f, 1e5f)}};
+  for (const auto& [scale, offset] : placements) {
+    for (const bool flat : {false, true}) {
+      std::vector<Triangle> tris = flat ? testmesh::flatGrid(12, 9)
+                                        : testmesh::triangleSoup(400, Aabb{glm::vec3(0.0f), glm::vec3(10.0f)}, 1.5f, 3);
+      for (Triangle& t : tris)
+        for (glm::vec3* v : {&t.v0, &t.v1, &t.v2}) *v = *v * scale + offset;
+      const OctantSequences seqs = octantsOf(tris);
+      size_t found = 0;
+      for (const Ray& ray : raysAt(tris, 9)) {
+        const Hit brute = intersectBruteForce(tris, ray, false);
+        const Hit walked = traverseEscapeSequence(seqs.sequences[rayOctant(ray.direction)], ray, false);
+        ASSERT_EQ(walked.found(), brute.found()) << "scale " << scale << " offset " << offset.x << (flat ? " flat" : "");
+        if (walked.found()) {
+          EXPECT_EQ(walked.t, brute.t) << "scale " << scale;
+        }
+        found += brute.found();
+      }
+      EXPECT_GT(found, tris.size() / 4) << "scale " << scale << (flat ? " flat" : "");
+    }
+  }
 }
 
 TEST(OctantSequences, EmptyAndLoneLeafTrees) {
