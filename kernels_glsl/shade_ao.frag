@@ -5,6 +5,7 @@
 // background.
 #include "texel_address.glsl"
 #include "ray_kinds.glsl"
+#include "triangle_shading.glsl"
 #include "ao_sampling.glsl"
 #include "row_bands.glsl"
 
@@ -17,7 +18,6 @@ uniform sampler2D uHit;
 uniform sampler2D uColor;
 uniform sampler2D uThroughput;
 uniform sampler2D uPending;
-uniform ConstStream uTriangles;  // 4 texels per triangle; the 4th is the geometric normal
 uniform vec3 uBackground;
 uniform float uEpsilon;
 uniform int uSamples;
@@ -50,7 +50,7 @@ void main() {
     if (!found) {
       color.rgb += uBackground;
     } else {
-      vec3 geometric = fetchTexel(uTriangles, 4u * unpackIndex(hit.w) + 3u).xyz;
+      vec3 geometric = fetchTriangleShading(unpackIndex(hit.w)).geometric;
       pending.rgb = dot(geometric, direction.xyz) > 0.0 ? -geometric : geometric;
       newOrigin = origin.xyz + hit.x * direction.xyz + uEpsilon * pending.rgb;
       color.a = 0.0;

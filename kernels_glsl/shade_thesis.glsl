@@ -8,8 +8,8 @@
 //   diffuse:     adds ambient*C, and (N.L)C times the light through a shadow
 //                ray, or directly on the last bounce (-b 1: primary rays only).
 // Needs texel_address.glsl and ray_kinds.glsl.
+#include "triangle_shading.glsl"
 
-uniform ConstStream uTriangles;  // 4 texels per triangle: (n0, material) n1 n2 (geometric normal)
 uniform ConstStream uMaterials;  // 2 texels per material: diffuse, mirror reflectance
 uniform vec3 uLightPosition;
 uniform vec3 uLightColor;
@@ -40,18 +40,16 @@ void shadeElement(inout StreamElement e) {
       e.color.rgb += e.throughput.rgb * uBackground;
     } else {
       uint triangle = unpackIndex(e.hit.w);
-      vec4 n0 = fetchTexel(uTriangles, 4u * triangle);
-      vec3 n1 = fetchTexel(uTriangles, 4u * triangle + 1u).xyz;
-      vec3 n2 = fetchTexel(uTriangles, 4u * triangle + 2u).xyz;
-      vec3 geometric = fetchTexel(uTriangles, 4u * triangle + 3u).xyz;
-      uint material = unpackIndex(n0.w);
+      TriangleShading shading = fetchTriangleShading(triangle);
+      vec3 geometric = shading.geometric;
+      uint material = shading.material;
       vec3 diffuse = fetchTexel(uMaterials, 2u * material).rgb;
       vec3 mirror = fetchTexel(uMaterials, 2u * material + 1u).rgb;
 
       vec3 position = e.origin.xyz + e.hit.x * e.direction.xyz;
       // Both normals face the incoming ray: triangles are two-sided.
       vec3 ng = dot(geometric, e.direction.xyz) > 0.0 ? -geometric : geometric;
-      vec3 n = normalize(n0.xyz * (1.0 - e.hit.y - e.hit.z) + n1 * e.hit.y + n2 * e.hit.z);
+      vec3 n = normalize(shading.n0 * (1.0 - e.hit.y - e.hit.z) + shading.n1 * e.hit.y + shading.n2 * e.hit.z);
       n = dot(n, ng) < 0.0 ? -n : n;
       newOrigin = position + uEpsilon * ng;
 

@@ -10,6 +10,7 @@
 // color.a holds count * 128 + depth - 1 (raygen's 0: empty stack, depth 1).
 #include "texel_address.glsl"
 #include "ray_kinds.glsl"
+#include "triangle_shading.glsl"
 
 layout(early_fragment_tests) in;
 layout(std430, binding = 1) buffer WhittedStacks { float whittedStack[]; };
@@ -21,7 +22,6 @@ uniform sampler2D uHit;
 uniform sampler2D uColor;
 uniform sampler2D uThroughput;
 uniform sampler2D uPending;
-uniform ConstStream uTriangles;  // 4 texels per triangle: (n0, material) n1 n2 (geometric normal)
 uniform ConstStream uMaterials;  // 4 texels per material: diffuse, mirror, (Ks, shine), (T, ior)
 uniform vec3 uLightPositions[MAX_LIGHTS];
 uniform vec3 uLightColors[MAX_LIGHTS];
@@ -101,11 +101,9 @@ void main() {
     color.rgb += throughput.rgb * uBackground;
   } else if (origin.w == RAY_NEAREST) {
     uint triangle = unpackIndex(hit.w);
-    vec4 n0 = fetchTexel(uTriangles, 4u * triangle);
-    vec3 n1 = fetchTexel(uTriangles, 4u * triangle + 1u).xyz;
-    vec3 n2 = fetchTexel(uTriangles, 4u * triangle + 2u).xyz;
-    vec3 geometric = fetchTexel(uTriangles, 4u * triangle + 3u).xyz;
-    uint material = unpackIndex(n0.w);
+    TriangleShading shading = fetchTriangleShading(triangle);
+    vec3 geometric = shading.geometric;
+    uint material = shading.material;
     vec3 diffuse = fetchTexel(uMaterials, 4u * material).rgb;
     vec3 mirrorColor = fetchTexel(uMaterials, 4u * material + 1u).rgb;
     vec4 specular = fetchTexel(uMaterials, 4u * material + 2u);
@@ -115,7 +113,7 @@ void main() {
     vec3 position = origin.xyz + hit.x * d;
     bool entering = dot(geometric, d) <= 0.0;
     vec3 ng = entering ? geometric : -geometric;
-    vec3 n = normalize(n0.xyz * (1.0 - hit.y - hit.z) + n1 * hit.y + n2 * hit.z);
+    vec3 n = normalize(shading.n0 * (1.0 - hit.y - hit.z) + shading.n1 * hit.y + shading.n2 * hit.z);
     n = dot(n, ng) < 0.0 ? -n : n;
     vec3 front = position + uEpsilon * ng, back = position - uEpsilon * ng;
     vec3 thr = throughput.rgb;

@@ -46,7 +46,8 @@ GpuRenderer::GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width,
       materials_(materialTexels(scene), "materials", maxPageTexels),
       raygen_("raygen", "raygen.frag"),
       cull_("cull", "cull.frag", StreamKernel::Depth::Cull),
-      shade_("shade", "shade.frag", StreamKernel::Depth::Test, {streamPagesDefine({triangles_.get(), &materials_})}),
+      shade_("shade", "shade.frag", StreamKernel::Depth::Test,
+             {streamPagesDefine({triangles_.get(), &materials_}), shadingTexelsDefine(scene)}),
       shading_(shading),
       compact_(compact) {
   cull_.bindInput("uState", rays_, kStateSurface);
@@ -58,6 +59,7 @@ GpuRenderer::GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width,
     streams.insert(streams.end(), {triangles_.get(), &materials_});
     std::vector<std::string> defines = fused->defines;
     defines.push_back(streamPagesDefine(streams));
+    defines.push_back(shadingTexelsDefine(scene));
     fused_ = std::make_unique<StreamKernel>("fused bounce", fused->glslFile, StreamKernel::Depth::Test, defines);
     traversal.bindFused(*fused_);
     unfinished_ = std::make_unique<StorageBuffer>("the fused bounce's count of unfinished rays");
@@ -86,7 +88,7 @@ void GpuRenderer::makeMixKernel() {
     whittedStacks_->reserve(uint64_t(rays_.elementCount()) * kWhittedStackFloats * uint64_t(kWhittedStackSize));
     mixShade_ = std::make_unique<StreamKernel>(
         "shade_whitted", "shade_whitted.frag", StreamKernel::Depth::Test,
-        std::vector<std::string>{streamPagesDefine({triangles_.get(), whittedMaterials_.get()}),
+        std::vector<std::string>{streamPagesDefine({triangles_.get(), whittedMaterials_.get()}), shadingTexelsDefine(scene_),
                                  "STACK_SIZE " + std::to_string(kWhittedStackSize),
                                  "MAX_LIGHTS " + std::to_string(kWhittedMaxLights)});
     mixShade_->bindInput("uMaterials", *whittedMaterials_);
@@ -94,7 +96,8 @@ void GpuRenderer::makeMixKernel() {
     mixShade_->set("uMinThroughput", kWhittedMinThroughput);
   } else {
     mixShade_ = std::make_unique<StreamKernel>("shade_ao", "shade_ao.frag", StreamKernel::Depth::Test,
-                                               std::vector<std::string>{streamPagesDefine({triangles_.get()})});
+                                               std::vector<std::string>{streamPagesDefine({triangles_.get()}),
+                                                                        shadingTexelsDefine(scene_)});
     mixShade_->set("uSamples", shading_.aoSamples);
     mixShade_->set("uAoDistance", aoDistance(scene_, shading_));
   }

@@ -9,15 +9,18 @@
 namespace passtrace {
 namespace {
 
-constexpr size_t kShadingTexelsPerTriangle = 4;
-
 // Triangles [first, first + count)'s texels into `out`.
 void writeTriangleShadingTexels(const Scene& scene, size_t first, size_t count, glm::vec4* out) {
+  const bool flat = !scene.hasVertexNormals();
   for (size_t i = first; i < first + count; ++i) {
     const glm::vec3 geometric = glm::normalize(scene.triangles[i].geometricNormal());
-    const std::array<glm::vec3, 3> n =
-        scene.hasVertexNormals() ? scene.vertexNormals[i] : std::array<glm::vec3, 3>{geometric, geometric, geometric};
-    *out++ = glm::vec4(n[0], packIndex(scene.materialIds[i]));
+    const float material = packIndex(scene.materialIds[i]);
+    if (flat) {
+      *out++ = glm::vec4(geometric, material);
+      continue;
+    }
+    const std::array<glm::vec3, 3>& n = scene.vertexNormals[i];
+    *out++ = glm::vec4(n[0], material);
     *out++ = glm::vec4(n[1], 0.0f);
     *out++ = glm::vec4(n[2], 0.0f);
     *out++ = glm::vec4(geometric, 0.0f);
@@ -26,22 +29,28 @@ void writeTriangleShadingTexels(const Scene& scene, size_t first, size_t count, 
 
 }  // namespace
 
+uint32_t shadingTexelsPerTriangle(const Scene& scene) { return scene.hasVertexNormals() ? 4 : 1; }
+
+std::string shadingTexelsDefine(const Scene& scene) {
+  return "SHADING_TEXELS " + std::to_string(shadingTexelsPerTriangle(scene));
+}
+
 std::vector<glm::vec4> triangleShadingTexels(const Scene& scene) {
-  std::vector<glm::vec4> texels(kShadingTexelsPerTriangle * scene.triangles.size());
+  std::vector<glm::vec4> texels(shadingTexelsPerTriangle(scene) * scene.triangles.size());
   writeTriangleShadingTexels(scene, 0, scene.triangles.size(), texels.data());
   return texels;
 }
 
 std::unique_ptr<ConstInputStream> triangleShadingStream(const Scene& scene, uint64_t maxPageTexels) {
   constexpr size_t kPiece = size_t(1) << 16;  // triangles
-  auto stream = std::make_unique<ConstInputStream>(kShadingTexelsPerTriangle * scene.triangles.size(),
-                                                   "triangle shading data", maxPageTexels);
-  std::vector<glm::vec4> piece(kShadingTexelsPerTriangle * kPiece);
+  const size_t perTriangle = shadingTexelsPerTriangle(scene);
+  auto stream = std::make_unique<ConstInputStream>(perTriangle * scene.triangles.size(), "triangle shading data",
+                                                   maxPageTexels);
+  std::vector<glm::vec4> piece(perTriangle * kPiece);
   for (size_t first = 0; first < scene.triangles.size(); first += kPiece) {
     const size_t count = std::min(kPiece, scene.triangles.size() - first);
     writeTriangleShadingTexels(scene, first, count, piece.data());
-    stream->write(kShadingTexelsPerTriangle * first,
-                  std::span<const glm::vec4>(piece.data(), kShadingTexelsPerTriangle * count));
+    stream->write(perTriangle * first, std::span<const glm::vec4>(piece.data(), perTriangle * count));
   }
   return stream;
 }

@@ -505,7 +505,8 @@ TEST_F(GlTest, ShadingMatchesCpp) {
     }
     for (int s = 0; s < shadedSurfaces; ++s) stream.upload(s, surfaces[s]);
     ConstInputStream triangles(triangleShadingTexels(scene), "triangles"), materials(materialTexels(scene), "materials");
-    StreamKernel shade("shade", "shade.frag", StreamKernel::Depth::Test, {streamPagesDefine({&triangles, &materials})});
+    StreamKernel shade("shade", "shade.frag", StreamKernel::Depth::Test,
+                       {streamPagesDefine({&triangles, &materials}), shadingTexelsDefine(scene)});
     const char* samplers[] = {"uOrigin", "uDirection", "uState", "uHit", "uColor", "uThroughput", "uPending"};
     for (int s = 0; s < shadedSurfaces; ++s) shade.bindInput(samplers[s], stream, s);
     shade.bindInput("uTriangles", triangles);
