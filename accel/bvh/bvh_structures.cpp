@@ -9,6 +9,7 @@
 #include "accel/bvh/octant_sequences.h"
 #include "accel/bvh_stack/bvh_stack_structure.h"
 #include "accel/milliseconds_since.h"
+#include "accel/return_freed_memory.h"
 
 namespace passtrace {
 namespace {
@@ -72,7 +73,7 @@ public:
   OctantSequenceAccelerator(OctantSequences sequences, AccelStats stats, TriangleTest test)
       : sequences_(std::move(sequences)), stats_(std::move(stats)), test_(test) {}
   Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
-    return traverseEscapeSequence(sequences_.sequences[rayOctant(ray.direction)], ray, anyHit, stats, test_);
+    return traverseEscapeSequence(sequences_.sequence(rayOctant(ray.direction)), ray, anyHit, stats, test_);
   }
   std::string name() const override { return stats_.name; }
   AccelStats stats() const override { return stats_; }
@@ -83,8 +84,8 @@ private:
   TriangleTest test_;
 };
 
-// bvh-octant's tree and its statistics; the sequences are flattened by the
-// CPU row (eight apart) and the stream rows (back to back) each their way.
+// bvh-octant's tree and its statistics; the CPU row keeps its eight
+// sequences in memory, the stream rows write them into their texture.
 struct OctantTree {
   Bvh bvh;
   AccelStats stats;
@@ -106,12 +107,13 @@ OctantTree buildOctantTree(std::span<const Triangle> tris, const AccelBuildConfi
   return tree;
 }
 
-// The build's statistics once its sequences are flattened: eight sequences of `texels` each.
-void finishOctantStats(AccelStats& stats, std::chrono::steady_clock::time_point start, float floatsPerSequence,
-                       uint64_t texels) {
+// The build's statistics once sequence 0 is flattened: Table 3's accounting
+// (floats per box, triangles excluded) for the eight; their bytes and the
+// shared triangle stream's.
+void finishOctantStats(AccelStats& stats, std::chrono::steady_clock::time_point start, const OctantZero& zero) {
   stats.buildMs = millisecondsSince(start);
-  stats.floatsPerTriangle = kOctants * floatsPerSequence;
-  stats.structureBytes = kOctants * texels * sizeof(glm::vec4);
+  stats.floatsPerTriangle = kOctants * zero.sequence.floatsPerTriangle();
+  stats.structureBytes = (kOctants * zero.sequence.texels.size() + zero.triangles.size()) * sizeof(glm::vec4);
 }
 
 
@@ -178,27 +180,30 @@ std::unique_ptr<GpuTraversal> makeGsBvhStream(std::span<const Triangle> tris, co
 std::unique_ptr<CpuAccelerator> makeOctantBvhCpu(std::span<const Triangle> tris, const AccelBuildConfig& config) {
   const auto start = std::chrono::steady_clock::now();
   OctantTree tree = buildOctantTree(tris, config);
-  OctantSequences sequences = flattenOctantSequences(tree.bvh, tris);
-  finishOctantStats(tree.stats, start, sequences.sequences[0].floatsPerTriangle(), sequences.sequences[0].texels.size());
+  OctantZero zero = flattenOctantZero(tree.bvh, tris);
+  finishOctantStats(tree.stats, start, zero);
+  OctantSequences sequences = octantSequencesFrom(std::move(zero), tris);
+  tree.stats.buildMs = millisecondsSince(start);
   return std::make_unique<OctantSequenceAccelerator>(std::move(sequences), std::move(tree.stats), config.triangleTest);
 }
 
-// bvh-octant and bvh-octant-fused on the stream path: the eight sequences
-// written into their texture octant by octant from the tree (the peak memory).
+// bvh-octant and bvh-octant-fused on the stream path: sequence 0 flattened
+// and the tree freed before the eight are written into their texture (the
+// peak memory is that texture beside sequence 0).
 std::unique_ptr<GpuTraversal> makeOctantStream(std::span<const Triangle> tris, const GpuTraversalConfig& config,
                                                GpuOctantBvhTraversal::Fused fused) {
   const auto start = std::chrono::steady_clock::now();
-  OctantTree tree = buildOctantTree(tris, config.build);
-  const uint64_t texels = octantSequenceTexels(tree.bvh);
-  // Table 3's accounting (floats per box, triangles excluded), as one sequence's: boxes of one quantized texel.
-  const float floatsPerSequence = tris.empty() ? 0.0f
-                                               : 4.0f * float(kOctantBoxTexels) * float(tree.bvh.internalCount()) /
-                                                     float(tree.bvh.leafCount());
-  finishOctantStats(tree.stats, start, floatsPerSequence, texels);
-  tree.stats.structureBytes += 2 * tris.size() * sizeof(glm::vec4);  // the shared triangle stream
-  if (fused == GpuOctantBvhTraversal::Fused::Yes) tree.stats.name = "bvh-octant-fused";
-  auto traversal = std::make_unique<GpuOctantBvhTraversal>(tree.bvh, tris, std::move(tree.stats), config, fused);
-  return traversal;
+  OctantZero zero;
+  AccelStats stats;
+  {
+    OctantTree tree = buildOctantTree(tris, config.build);
+    zero = flattenOctantZero(tree.bvh, tris);
+    stats = std::move(tree.stats);
+  }
+  returnFreedMemory();  // the tree and the builder's temporaries, before the texture's pages
+  finishOctantStats(stats, start, zero);
+  if (fused == GpuOctantBvhTraversal::Fused::Yes) stats.name = "bvh-octant-fused";
+  return std::make_unique<GpuOctantBvhTraversal>(std::move(zero), tris, std::move(stats), config, fused);
 }
 
 std::unique_ptr<GpuTraversal> makeOctantBvhStream(std::span<const Triangle> tris, const GpuTraversalConfig& config) {

@@ -4,13 +4,14 @@
 
 namespace passtrace {
 
-bool stepEscapeSequence(const EscapeSequence& seq, const Ray& ray, bool anyHit, EscapeCursor& cursor,
+bool stepEscapeSequence(const SequenceView& seq, const Ray& ray, bool anyHit, EscapeCursor& cursor,
                         uint32_t maxSteps, TriangleTest test) {
   const glm::vec3 invDir = safeInverse(ray.direction);
   const glm::vec4* texels = seq.texels.data();
   const auto size = static_cast<uint32_t>(seq.texels.size());
   uint32_t idx = cursor.index;
   const uint32_t boxTexels = seq.grid ? 1 : 2;
+  const bool shared = !seq.sharedTriangles.empty();
   const GridRay gridRay = seq.grid ? seq.grid->ray(ray.origin, invDir) : GridRay{};
   for (uint32_t step = 0; step < maxSteps && idx < size; ++step) {
     const glm::vec4 t0 = texels[idx];
@@ -20,20 +21,19 @@ bool stepEscapeSequence(const EscapeSequence& seq, const Ray& ray, bool anyHit, 
                                   : intersectsBox(ray.origin, invDir, {glm::vec3(t0), glm::vec3(texels[idx + 1])},
                                                   cursor.best.t);
       idx = enter ? idx + boxTexels : unpackIndex(t0.w);
-    } else {  // a triangle
-      const glm::vec4 t1 = texels[idx + 1];
-      const glm::vec4 t2 = texels[idx + 2];
+    } else {  // a triangle: v1 and v2 inline, or at 2 slot of the shared stream
+      const glm::vec4* rest = shared ? &seq.sharedTriangles[2 * size_t(unpackIndex(-t0.w))] : &texels[idx + 1];
       ++cursor.stats.triangleTests;
-      const Triangle tri{glm::vec3(t0), glm::vec3(t1), glm::vec3(t2)};
-      const bool found = intersectTriangle(ray.origin, ray.direction, tri, unpackIndex(t1.w), cursor.best, test);
-      idx = (found && anyHit) ? size : idx + 3;
+      const Triangle tri{glm::vec3(t0), glm::vec3(rest[0]), glm::vec3(rest[1])};
+      const bool found = intersectTriangle(ray.origin, ray.direction, tri, unpackIndex(rest[0].w), cursor.best, test);
+      idx = (found && anyHit) ? size : idx + (shared ? 1 : 3);
     }
   }
   cursor.index = idx;
   return idx < size;
 }
 
-Hit traverseEscapeSequence(const EscapeSequence& seq, const Ray& ray, bool anyHit, RayStats* stats,
+Hit traverseEscapeSequence(const SequenceView& seq, const Ray& ray, bool anyHit, RayStats* stats,
                            TriangleTest test) {
   EscapeCursor cursor;
   cursor.best.t = ray.tMax;

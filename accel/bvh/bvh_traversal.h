@@ -41,11 +41,11 @@ struct EscapeCursor {
 // Runs at most maxSteps iterations of algorithm 4 from `cursor`, exactly as
 // one pass of kernels_glsl/bvh/bvh_traverse.frag with loop limit maxSteps.
 // Returns true while the ray still has work.
-bool stepEscapeSequence(const EscapeSequence& seq, const Ray& ray, bool anyHit, EscapeCursor& cursor,
+bool stepEscapeSequence(const SequenceView& seq, const Ray& ray, bool anyHit, EscapeCursor& cursor,
                         uint32_t maxSteps, TriangleTest test = TriangleTest::MollerTrumbore);
 
 // stats, when given, is added to (not reset): one step per box or triangle read.
-Hit traverseEscapeSequence(const EscapeSequence& seq, const Ray& ray, bool anyHit, RayStats* stats = nullptr,
+Hit traverseEscapeSequence(const SequenceView& seq, const Ray& ray, bool anyHit, RayStats* stats = nullptr,
                            TriangleTest test = TriangleTest::MollerTrumbore);
 
 // Real recursion, one call per visited node, children in stored order; the

@@ -46,11 +46,23 @@
 
 namespace passtrace {
 
+// What a walk reads (accel/bvh/bvh_traversal.h): the texels; with a grid,
+// boxes of one quantized texel; with shared triangles, leaves of one texel
+// over them (LeafTexels::Shared).
+struct SequenceView {
+  std::span<const glm::vec4> texels;
+  const BoxGrid* grid = nullptr;
+  std::span<const glm::vec4> sharedTriangles;
+};
+
 struct EscapeSequence {
   std::vector<glm::vec4> texels;
   uint32_t boxCount = 0;       // internal nodes
   uint32_t triangleCount = 0;  // leaves
   std::optional<BoxGrid> grid; // set: boxes of one quantized texel
+
+  // Leaves inline (a LeafTexels::Shared sequence needs its triangle stream beside it).
+  operator SequenceView() const { return {texels, grid ? &*grid : nullptr, {}}; }
 
   // Memory overhead as the thesis counts it (Table 3): 8 floats per box (4
   // quantized), triangles excluded as every structure stores them. A binary

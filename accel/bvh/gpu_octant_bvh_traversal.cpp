@@ -6,21 +6,25 @@
 
 namespace passtrace {
 
-GpuOctantBvhTraversal::GpuOctantBvhTraversal(const Bvh& bvh, std::span<const Triangle> tris, AccelStats stats,
+GpuOctantBvhTraversal::GpuOctantBvhTraversal(OctantZero zero, std::span<const Triangle> tris, AccelStats stats,
                                              const GpuTraversalConfig& config, Fused fused)
-    : sequenceSize_(octantSequenceTexels(bvh)),
-      grid_(octantBoxGrid(bvh)),
-      sequences_(kOctants * sequenceSize_, "the eight octant BVH sequences", config.maxPageTexels),
-      triangles_(sharedTriangleTexels(bvh, tris), "the octant BVH's triangles", config.maxPageTexels),
+    : sequenceSize_(zero.sequence.texels.size()),
+      grid_(zero.sequence.grid.value_or(BoxGrid{})),
+      triangles_(zero.triangles, "the octant BVH's triangles", config.maxPageTexels),
+      // The triangles are in their texture: their array goes before the sequences' texture takes its pages
+      // (llvmpipe's are resident once allocated).
+      sequences_([&] { std::vector<glm::vec4>().swap(zero.triangles); return kOctants * sequenceSize_; }(),
+                 "the eight octant BVH sequences", config.maxPageTexels),
       kernel_("bvh_octant_traverse", "bvh/bvh_octant_traverse.frag", StreamKernel::Depth::Test,
               {streamPagesDefine({&sequences_, &triangles_}), triangleTestDefine(config.build.triangleTest)}),
       stats_(std::move(stats)),
       loopLimit_(config.loopLimit) {
   // Flattened as they go up: the build's time includes the writing.
   const auto writing = std::chrono::steady_clock::now();
-  writeOctantSequences(bvh, tris, [&](uint64_t first, std::span<const glm::vec4> texels) {
+  writeOctantSequences(zero, tris, [&](uint64_t first, std::span<const glm::vec4> texels) {
     sequences_.write(size_t(first), texels);
   });
+  zero = {};
   stats_.buildMs += millisecondsSince(writing);
   bindFused(kernel_);  // the traversal pass reads the same walk inputs
   if (fused == Fused::Yes && config.onePassPerBounce)

@@ -18,8 +18,8 @@ namespace passtrace {
 class GpuOctantBvhTraversal final : public GpuTraversal {
  public:
   enum class Fused { No, Yes };
-  // Uploads `bvh`'s eight sequences octant by octant (writeOctantSequences).
-  GpuOctantBvhTraversal(const Bvh& bvh, std::span<const Triangle> tris, AccelStats stats,
+  // Writes the eight sequences from `zero` octant by octant (writeOctantSequences), then lets it go.
+  GpuOctantBvhTraversal(OctantZero zero, std::span<const Triangle> tris, AccelStats stats,
                         const GpuTraversalConfig& config, Fused fused = Fused::No);
   uint64_t trace(InOutStream& rays, uint64_t active, const std::function<uint64_t()>& retire) override;
   AccelStats stats() const override { return stats_; }
@@ -29,8 +29,8 @@ class GpuOctantBvhTraversal final : public GpuTraversal {
  private:
   uint64_t sequenceSize_;
   BoxGrid grid_;
+  ConstInputStream triangles_;  // before sequences_: made first (see the constructor)
   ConstInputStream sequences_;
-  ConstInputStream triangles_;
   StreamKernel kernel_;
   AccelStats stats_;
   int loopLimit_;

@@ -57,110 +57,100 @@ glm::vec3 octantDiagonal(uint32_t octant) {
   return {(octant & 1u) ? -1.0f : 1.0f, (octant & 2u) ? -1.0f : 1.0f, (octant & 4u) ? -1.0f : 1.0f};
 }
 
-// `node`'s children (indices into bvh.nodes) in the octant's order: box centres
-// along the diagonal, where a ray of this octant reaches smaller values first;
-// ties keep stored order.
-void sortChildrenForOctant(const Bvh& bvh, glm::vec3 diagonal, uint32_t* first, uint32_t count) {
-  std::stable_sort(first, first + count, [&](uint32_t a, uint32_t b) {
-    const Aabb& boxA = bvh.nodes[a].box;
-    const Aabb& boxB = bvh.nodes[b].box;
-    return glm::dot(boxA.min + boxA.max, diagonal) < glm::dot(boxB.min + boxB.max, diagonal);
-  });
-}
-
-// Texels of every subtree with LeafTexels::Shared; ordering children moves
-// subtrees without resizing them, so one count serves the eight octants.
-std::vector<uint32_t> sharedSubtreeTexels(const Bvh& bvh) {
-  std::vector<uint32_t> preorder;
-  preorder.reserve(bvh.nodes.size());
-  for (std::vector<uint32_t> stack{0}; !stack.empty();) {
-    const uint32_t index = stack.back();
-    stack.pop_back();
-    preorder.push_back(index);
-    const BvhNode& node = bvh.nodes[index];
-    stack.insert(stack.end(), bvh.children.begin() + node.firstChild,
-                 bvh.children.begin() + node.firstChild + node.childCount);
-  }
-  std::vector<uint32_t> subtree(bvh.nodes.size(), 0);
-  for (auto it = preorder.rbegin(); it != preorder.rend(); ++it) {
-    const BvhNode& node = bvh.nodes[*it];
-    uint64_t size = node.isLeaf() ? leafTexelCount(LeafTexels::Shared) : kOctantBoxTexels;
-    for (uint32_t c = 0; c < node.childCount; ++c) size += subtree[bvh.children[node.firstChild + c]];
-    if (size >= kMaxSequenceTexels)
-      throw std::length_error("bvh-octant: a sequence of " + std::to_string(size) +
-                              " texels exceeds the packable index range");
-    subtree[*it] = uint32_t(size);
-  }
-  return subtree;
+// A child's sort key: its quantized box's centre (twice it, in grid units:
+// exact integers) along the diagonal, where a ray of this octant reaches
+// smaller values first.
+float orderKey(const glm::vec3& quantized, const glm::vec3& diagonal) {
+  const Aabb planes = BoxGrid::gridPlanes(quantized);
+  return glm::dot(planes.min + planes.max, diagonal);
 }
 
 }  // namespace
 
-Bvh orderChildrenForOctant(const Bvh& bvh, uint32_t octant) {
+Bvh orderChildrenForOctant(const Bvh& bvh, uint32_t octant, const BoxGrid& grid) {
   Bvh ordered = bvh;
-  for (const BvhNode& node : ordered.nodes)
-    sortChildrenForOctant(ordered, octantDiagonal(octant), ordered.children.data() + node.firstChild, node.childCount);
+  std::vector<float> keys(bvh.nodes.size());
+  for (size_t i = 0; i < bvh.nodes.size(); ++i) keys[i] = orderKey(grid.encode(bvh.nodes[i].box), octantDiagonal(octant));
+  for (const BvhNode& node : ordered.nodes) {
+    uint32_t* first = ordered.children.data() + node.firstChild;
+    std::stable_sort(first, first + node.childCount, [&](uint32_t a, uint32_t b) { return keys[a] < keys[b]; });
+  }
   return ordered;
 }
 
 BoxGrid octantBoxGrid(const Bvh& bvh) { return bvh.empty() ? BoxGrid{} : BoxGrid::over(bvh.nodes[0].box); }
 
-OctantSequences flattenOctantSequences(const Bvh& bvh, std::span<const Triangle> tris) {
-  OctantSequences out;
+OctantZero flattenOctantZero(const Bvh& bvh, std::span<const Triangle> tris) {
+  if (bvh.empty()) return {};
   const BoxGrid grid = octantBoxGrid(bvh);
-  for (uint32_t octant = 0; octant < kOctants; ++octant)
-    out.sequences[octant] = flattenEscapeSequence(orderChildrenForOctant(bvh, octant), tris, LeafTexels::Inline, {},
-                                                  &grid);
+  const Bvh zero = orderChildrenForOctant(bvh, 0, grid);
+  OctantZero out{flattenEscapeSequence(zero, tris, LeafTexels::Shared, {}, &grid), sharedTriangleTexels(zero, tris), {}};
+  out.slotTriangles.reserve(out.triangles.size() / 2);
+  for (size_t slot = 0; 2 * slot < out.triangles.size(); ++slot)
+    out.slotTriangles.push_back(unpackIndex(out.triangles[2 * slot].w));
   return out;
 }
 
-uint64_t octantSequenceTexels(const Bvh& bvh) {
-  // Every box and leaf once: no need to walk the tree.
-  const uint64_t leaves = bvh.leafCount();
-  return bvh.empty() ? 0 : leaves * leafTexelCount(LeafTexels::Shared) + (bvh.nodes.size() - leaves) * kOctantBoxTexels;
-}
-
-void writeOctantSequences(const Bvh& bvh, std::span<const Triangle> tris,
+void writeOctantSequences(const OctantZero& zero, std::span<const Triangle> tris,
                           const std::function<void(uint64_t first, std::span<const glm::vec4> texels)>& write) {
-  if (bvh.empty()) return;
-  const std::vector<uint32_t> subtree = sharedSubtreeTexels(bvh);
-  const std::vector<uint32_t> slots = leafSlots(bvh);
-  const uint64_t size = subtree[0];
-  const BoxGrid grid = octantBoxGrid(bvh);
-  std::vector<glm::vec4> chunk(kOctantWriteTexels + kOctantBoxTexels);
+  const std::vector<glm::vec4>& source = zero.sequence.texels;
+  const uint64_t size = source.size();
+  if (size == 0) return;
+  const BoxGrid& grid = *zero.sequence.grid;
+  const auto isBox = [&](uint32_t i) { return source[i].w >= 0.0f; };
+  const auto end = [&](uint32_t i) { return isBox(i) ? unpackIndex(source[i].w) : i + 1; };  // after i's subtree
+  // Leaves carry no box: theirs is their triangle's, as the tree's leaves had.
+  const auto quantized = [&](uint32_t i) {
+    if (isBox(i)) return glm::vec3(source[i]);
+    return grid.encode(tris[zero.slotTriangles[unpackIndex(-source[i].w)]].bounds());
+  };
+  std::vector<glm::vec4> chunk(kOctantWriteTexels);
   for (uint32_t octant = 0; octant < kOctants; ++octant) {
     const glm::vec3 diagonal = octantDiagonal(octant);
     uint64_t chunkFirst = 0;  // the chunk's first texel within the sequence
     size_t filled = 0;
-    uint32_t at = 0;          // the texel being written, within the sequence
-    std::vector<uint32_t> stack{0};  // explicit pre-order work stack
+    std::vector<uint32_t> stack{0};  // indices into sequence 0, in pre-order
+    std::vector<std::pair<float, uint32_t>> children;
     while (!stack.empty()) {
-      const uint32_t index = stack.back();
+      const uint32_t i = stack.back();
       stack.pop_back();
-      const BvhNode& node = bvh.nodes[index];
-      if (node.isLeaf()) {
-        if (node.triangle >= tris.size())
-          throw std::invalid_argument("bvh-octant: leaf " + std::to_string(index) + " names triangle " +
-                                      std::to_string(node.triangle) + " of " + std::to_string(tris.size()));
-        writeLeafTexels(chunk.data() + filled, tris[node.triangle], node.triangle, slots[index], LeafTexels::Shared);
-        filled += leafTexelCount(LeafTexels::Shared);
+      const uint32_t at = uint32_t(chunkFirst + filled);
+      if (!isBox(i)) {
+        chunk[filled++] = source[i];
       } else {
-        writeBoxTexels(chunk.data() + filled, node.box, at + subtree[index], &grid);
-        filled += kOctantBoxTexels;
-        const size_t before = stack.size();
-        stack.insert(stack.end(), bvh.children.begin() + node.firstChild,
-                     bvh.children.begin() + node.firstChild + node.childCount);
-        sortChildrenForOctant(bvh, diagonal, stack.data() + before, node.childCount);
-        std::reverse(stack.begin() + std::ptrdiff_t(before), stack.end());  // the nearest pops first
+        // A subtree keeps its size in every order: its escape moves with it.
+        chunk[filled++] = glm::vec4(glm::vec3(source[i]), packIndex(at + (end(i) - i)));
+        children.clear();
+        for (uint32_t c = i + 1; c < end(i); c = end(c))
+          children.emplace_back(octant == 0 ? 0.0f : orderKey(quantized(c), diagonal), c);
+        // Stable on sequence 0's order: ties as octant 0 has them.
+        std::stable_sort(children.begin(), children.end(),
+                         [](const auto& a, const auto& b) { return a.first < b.first; });
+        for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back(it->second);
       }
-      at = uint32_t(chunkFirst + filled);
-      if (filled >= kOctantWriteTexels || stack.empty()) {
+      if (filled == kOctantWriteTexels || stack.empty()) {
         write(octant * size + chunkFirst, std::span<const glm::vec4>(chunk.data(), filled));
         chunkFirst += filled;
         filled = 0;
       }
     }
   }
+}
+
+OctantSequences flattenOctantSequences(const Bvh& bvh, std::span<const Triangle> tris) {
+  return octantSequencesFrom(flattenOctantZero(bvh, tris), tris);
+}
+
+OctantSequences octantSequencesFrom(OctantZero zero, std::span<const Triangle> tris) {
+  OctantSequences out;
+  out.sequenceTexels = zero.sequence.texels.size();
+  out.grid = zero.sequence.grid.value_or(BoxGrid{});
+  out.texels.resize(kOctants * out.sequenceTexels);
+  writeOctantSequences(zero, tris, [&](uint64_t first, std::span<const glm::vec4> texels) {
+    std::copy(texels.begin(), texels.end(), out.texels.begin() + std::ptrdiff_t(first));
+  });
+  out.triangles = std::move(zero.triangles);
+  return out;
 }
 
 }  // namespace passtrace

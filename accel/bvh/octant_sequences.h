@@ -8,11 +8,12 @@
 // The idea is Hachisuka's multiple-threaded BVH (six orders by the dominant
 // axis) with one order per octant instead.
 //
-// The eight sequences have the same size (the same tree, reordered), so the
-// GPU stores them back to back and a ray reads sequence o at o * size. Their
-// boxes are quantized to one grid over the root's box (octantBoxGrid), a texel
-// each: eight copies of full-precision boxes were 256 of the stream path's 607
-// bytes per triangle.
+// The eight sequences have the same size (the same tree, reordered), so
+// they lie back to back and a ray reads sequence o at o * size. Their boxes
+// are quantized to one grid over the root's box (octantBoxGrid), a texel each
+// (eight copies of full-precision boxes were 256 of the stream path's 607
+// bytes per triangle), and their leaves are one texel over a triangle stream
+// the eight share (LeafTexels::Shared). The CPU row walks the same texels.
 
 #include <array>
 #include <cstdint>
@@ -37,8 +38,27 @@ inline uint32_t rayOctant(const glm::vec3& direction) {
   return (direction.x < 0.0f ? 1u : 0u) | (direction.y < 0.0f ? 2u : 0u) | (direction.z < 0.0f ? 4u : 0u);
 }
 
+// Octant 0's sequence (shared leaves, quantized boxes; slots number the
+// leaves in this sequence's order) and the triangle stream the eight share:
+// everything the eight sequences are made of, so the tree can go before
+// they are written. The stream path's peak was the tree (96 bytes per
+// triangle) beside the eight sequences' texture.
+struct OctantZero {
+  EscapeSequence sequence;
+  std::vector<glm::vec4> triangles;  // sharedTriangleTexels, in sequence 0's leaf order
+  std::vector<uint32_t> slotTriangles;  // each slot's scene triangle: what writing needs once `triangles` is uploaded
+};
+
+// The eight sequences back to back and the triangle stream: the stream
+// path's layout, kept whole (the CPU row; tests).
 struct OctantSequences {
-  std::array<EscapeSequence, kOctants> sequences;  // by rayOctant
+  std::vector<glm::vec4> texels;
+  uint64_t sequenceTexels = 0;  // each sequence's
+  BoxGrid grid;
+  std::vector<glm::vec4> triangles;
+  SequenceView sequence(uint32_t octant) const {
+    return {std::span(texels).subspan(octant * sequenceTexels, sequenceTexels), &grid, triangles};
+  }
 };
 
 // A binary BVH of the stack-BVH builders (accel/bvh_stack/) as a Bvh: a leaf of
@@ -46,29 +66,30 @@ struct OctantSequences {
 // box, then its triangles in the sequence), a leaf of one reference a leaf.
 Bvh bvhFromBinaryBvh(const BinaryBvh& binary, std::span<const Triangle> tris);
 
-// Children of each internal node sorted by their box centres projected on the
-// octant's diagonal (+-1, +-1, +-1), nearest first; ties keep stored order.
-Bvh orderChildrenForOctant(const Bvh& bvh, uint32_t octant);
 // The grid every sequence of `bvh` quantizes its boxes to: over the root's box.
 BoxGrid octantBoxGrid(const Bvh& bvh);
 inline constexpr uint64_t kOctantBoxTexels = 1;
-// The CPU row's sequences: triangles inline (LeafTexels::Inline), quantized boxes.
-OctantSequences flattenOctantSequences(const Bvh& bvh, std::span<const Triangle> tris);
 
-// The stream path's layout: the eight sequences back to back (sequence o at
-// texel o * octantSequenceTexels), leaves of one texel over a triangle stream
-// they share (LeafTexels::Shared, sharedTriangleTexels): eight copies of the
-// boxes but one of the triangles, 288 bytes per triangle in all (416 with
-// full-precision boxes, 640 with LeafTexels::Inline too). writeOctantSequences hands them to `write` in
-// pieces of at most kOctantWriteTexels, walking the tree in each octant's
-// order without copying it, so the only whole copy is the one `write` makes
-// (the texture): before, the eight, their concatenation and the texture
-// coexisted (1,936 bytes per triangle at the peak, then 1,313).
-// Sequence o equals flattenEscapeSequence(orderChildrenForOctant(bvh, o),
-// tris, LeafTexels::Shared, leafSlots(bvh), &octantBoxGrid(bvh)) texel for texel.
+// Children of each internal node sorted by their quantized boxes' centres
+// (in grid units, exact) along the octant's diagonal (+-1, +-1, +-1), nearest
+// first; ties keep stored order. Sequence o is octant 0's tree ordered for o.
+Bvh orderChildrenForOctant(const Bvh& bvh, uint32_t octant, const BoxGrid& grid);
+OctantZero flattenOctantZero(const Bvh& bvh, std::span<const Triangle> tris);
+
+// The eight sequences from octant zero, in pieces of at most
+// kOctantWriteTexels handed to `write` (first texel, texels), octant by
+// octant: each re-walks sequence 0, ordering a box's children for its octant
+// (their keys read from their texels, a leaf's from its triangle's box:
+// `tris` through zero.slotTriangles; zero.triangles is not read).
+// Sequence o equals flattenEscapeSequence(orderChildrenForOctant(octant 0's
+// tree, o, grid), tris, LeafTexels::Shared, its slots, &grid) texel for
+// texel. 288 bytes per triangle in all with the triangle stream (416 with
+// full-precision boxes, 640 with every sequence holding its triangles).
 inline constexpr size_t kOctantWriteTexels = size_t(1) << 16;
-uint64_t octantSequenceTexels(const Bvh& bvh);
-void writeOctantSequences(const Bvh& bvh, std::span<const Triangle> tris,
+void writeOctantSequences(const OctantZero& zero, std::span<const Triangle> tris,
                           const std::function<void(uint64_t first, std::span<const glm::vec4> texels)>& write);
+// The same kept in memory.
+OctantSequences octantSequencesFrom(OctantZero zero, std::span<const Triangle> tris);
+OctantSequences flattenOctantSequences(const Bvh& bvh, std::span<const Triangle> tris);
 
 }  // namespace passtrace

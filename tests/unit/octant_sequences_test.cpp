@@ -45,8 +45,8 @@ TEST(OctantSequences, RayMeetsTheNearestTrianglesFirstInItsOwnOctant) {
     const Ray ray{-5.0f * d, d};
     ASSERT_EQ(rayOctant(ray.direction), octant);
     RayStats own, opposite;
-    const Hit hit = traverseEscapeSequence(seqs.sequences[octant], ray, false, &own);
-    const Hit far = traverseEscapeSequence(seqs.sequences[kOctants - 1 - octant], ray, false, &opposite);
+    const Hit hit = traverseEscapeSequence(seqs.sequence(octant), ray, false, &own);
+    const Hit far = traverseEscapeSequence(seqs.sequence(kOctants - 1 - octant), ray, false, &opposite);
     EXPECT_EQ(hit.id, 0u) << "octant " << octant;
     EXPECT_EQ(far.id, 0u) << "octant " << octant;
     // Near first: one leaf (at most bvh-stack's 4 references) before the hit culls every other box.
@@ -61,11 +61,11 @@ TEST(OctantSequences, EverySequenceHoldsEveryReferenceOnce) {
   const OctantSequences seqs = flattenOctantSequences(bvhFromBinaryBvh(binary, tris), tris);
   std::vector<uint32_t> expected = binary.references;
   std::sort(expected.begin(), expected.end());
-  for (const EscapeSequence& seq : seqs.sequences) {
-    EXPECT_EQ(seq.texels.size(), seqs.sequences[0].texels.size());
+  for (uint32_t octant = 0; octant < kOctants; ++octant) {
+    const SequenceView seq = seqs.sequence(octant);
     std::vector<uint32_t> found;
-    for (uint32_t i = 0; i < seq.texels.size(); i += seq.texels[i].w >= 0.0f ? kOctantBoxTexels : 3)
-      if (seq.texels[i].w < 0.0f) found.push_back(unpackIndex(seq.texels[i + 1].w));
+    for (const glm::vec4& texel : seq.texels)
+      if (texel.w < 0.0f) found.push_back(unpackIndex(seq.sharedTriangles[2 * unpackIndex(-texel.w)].w));
     std::sort(found.begin(), found.end());
     EXPECT_EQ(found, expected);
   }
@@ -78,20 +78,24 @@ TEST(OctantSequences, WrittenPiecesAreTheEightSharedLeafSequences) {
   const std::vector<Triangle> tris = testmesh::triangleSoup(45000, Aabb{glm::vec3(0.0f), glm::vec3(60.0f)}, 1.0f, 11);
   const Bvh bvh = bvhFromBinaryBvh(buildBvhStackTree(tris, BvhBuilderKind::Sah), tris);
   std::vector<glm::vec4> concatenated;
-  const std::vector<uint32_t> slots = leafSlots(bvh);
+  // The tree as octant 0 orders it, each octant's order from there (ties as octant 0 has them), slots as octant 0 numbers them.
   const BoxGrid grid = octantBoxGrid(bvh);
+  const Bvh zeroTree = orderChildrenForOctant(bvh, 0, grid);
+  const std::vector<uint32_t> slots = leafSlots(zeroTree);
   for (uint32_t octant = 0; octant < kOctants; ++octant) {
     const EscapeSequence seq =
-        flattenEscapeSequence(orderChildrenForOctant(bvh, octant), tris, LeafTexels::Shared, slots, &grid);
-    ASSERT_EQ(seq.texels.size(), octantSequenceTexels(bvh));
+        flattenEscapeSequence(orderChildrenForOctant(zeroTree, octant, grid), tris, LeafTexels::Shared, slots, &grid);
     concatenated.insert(concatenated.end(), seq.texels.begin(), seq.texels.end());
   }
-  ASSERT_GT(octantSequenceTexels(bvh), kOctantWriteTexels);
+  const OctantZero zero = flattenOctantZero(bvh, tris);
+  EXPECT_TRUE(zero.triangles == sharedTriangleTexels(zeroTree, tris));
+  ASSERT_EQ(zero.sequence.texels.size() * kOctants, concatenated.size());
+  ASSERT_GT(zero.sequence.texels.size(), kOctantWriteTexels);
   std::vector<glm::vec4> written(concatenated.size(), glm::vec4(-7.0f));
   std::vector<bool> seen(written.size(), false);
   size_t pieces = 0;
-  writeOctantSequences(bvh, tris, [&](uint64_t first, std::span<const glm::vec4> texels) {
-    ASSERT_LE(texels.size(), kOctantWriteTexels + kOctantBoxTexels);
+  writeOctantSequences(zero, tris, [&](uint64_t first, std::span<const glm::vec4> texels) {
+    ASSERT_LE(texels.size(), kOctantWriteTexels);
     ASSERT_LE(first + texels.size(), written.size());
     for (size_t i = 0; i < texels.size(); ++i) {
       EXPECT_FALSE(seen[first + i]) << "texel " << first + i << " written twice";
@@ -171,7 +175,7 @@ TEST(OctantSequences, QuantizedBoxesLoseNoHitAtAnyScale) {
       size_t found = 0;
       for (const Ray& ray : raysAt(tris, 9)) {
         const Hit brute = intersectBruteForce(tris, ray, false);
-        const Hit walked = traverseEscapeSequence(seqs.sequences[rayOctant(ray.direction)], ray, false);
+        const Hit walked = traverseEscapeSequence(seqs.sequence(rayOctant(ray.direction)), ray, false);
         ASSERT_EQ(walked.found(), brute.found()) << "scale " << scale << " offset " << offset.x << (flat ? " flat" : "");
         if (walked.found()) {
           EXPECT_EQ(walked.t, brute.t) << "scale " << scale;
@@ -184,10 +188,14 @@ TEST(OctantSequences, QuantizedBoxesLoseNoHitAtAnyScale) {
 }
 
 TEST(OctantSequences, EmptyAndLoneLeafTrees) {
-  EXPECT_TRUE(octantsOf({}).sequences[0].texels.empty());
+  EXPECT_TRUE(octantsOf({}).texels.empty());
   const std::vector<Triangle> one = testmesh::singleTriangle();
   const OctantSequences seqs = octantsOf(one);
-  for (const EscapeSequence& seq : seqs.sequences) EXPECT_EQ(seq.triangleCount, 1u);
+  ASSERT_EQ(seqs.sequenceTexels, 2u) << "the root's box and its one leaf";
+  for (uint32_t octant = 0; octant < kOctants; ++octant) {
+    EXPECT_EQ(unpackIndex(seqs.sequence(octant).texels[0].w), 2u) << "the root escapes to the end";
+    EXPECT_LT(seqs.sequence(octant).texels[1].w, 0.0f);
+  }
 }
 
 }  // namespace
