@@ -187,21 +187,21 @@ std::vector<Structure> makeRows() {
       // bvh-stack's tree.
       {.name = "bvh-octant", .family = "bvh",
        .description = "binary BVH (--bvh-builder) as eight escape-index sequences, children near-first for each "
-                      "ray octant (no per-ray stack; on the stream path the triangles stored once for the eight); "
-                      "on the CPU the kernel's algorithm",
+                      "ray octant (no per-ray stack; boxes of one texel on a scene-wide grid, the triangles stored "
+                      "once for the eight); on the CPU the kernel's algorithm over the same texels",
        .renderers = {Cpu, Gpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeOctantBvhCpu, .stream = makeOctantBvhStream, .mirror = makeOctantBvhCpu,
-       // Eight sequences, leaves of one triangle; the GPU's measured as the peak's slope from spheres 1M to 2M
-       // (1,009,202 and 2,017,202 triangles: 607, fused 633) with one-texel leaves over a shared triangle stream,
-       // written octant by octant (was 1,313 back to back with the triangles in every sequence, 2,009 before).
-       .memory = {922, 640}, .reads = {P::BvhBuilder}},
+       // Measured as the peak's slope from spheres 1M to 2M (1,009,202 and 2,017,202 triangles): the GPU's 394
+       // (fused too) with boxes of one quantized texel and one-texel leaves over a shared triangle stream, written
+       // from octant 0's sequence once the tree is freed (was 607, 1,313, 2,009); the CPU's 481 (was 922).
+       .memory = {490, 400}, .reads = {P::BvhBuilder}},
       // Issue 17 item 3, fewer passes per bounce: bvh-octant's walk with ray generation and shading in one pass.
       {.name = "bvh-octant-fused", .family = "bvh",
        .description = "bvh-octant on the stream path with a primary bounce in one pass: ray generation, the "
                       "octant walk and thesis shading fused, at -l 0 (other bounces, shadings and -l pass by pass)",
        .renderers = {Gpu}, .number = std::nullopt, .numberedOn = {},
        .stream = makeOctantBvhFusedStream, .mirror = makeOctantBvhCpu,
-       .memory = {0, 640}, .reads = {P::BvhBuilder}},  // bvh-octant's data and the fused pass (no CPU row; was 1,334)
+       .memory = {0, 400}, .reads = {P::BvhBuilder}},  // bvh-octant's data and the fused pass (no CPU row; was 640)
   };
 #if PASSTRACE_HAVE_EMBREE
   rows.push_back({.name = "embree", .family = "embree",
