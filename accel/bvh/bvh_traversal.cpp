@@ -10,7 +10,7 @@ bool stepEscapeSequence(const SequenceView& seq, const Ray& ray, bool anyHit, Es
   const glm::vec4* texels = seq.texels.data();
   const auto size = static_cast<uint32_t>(seq.texels.size());
   uint32_t idx = cursor.index;
-  const uint32_t boxTexels = seq.grid ? 1 : 2;
+  const auto boxTexels = uint32_t(boxTexelCount(seq.grid));
   const bool shared = !seq.sharedTriangles.empty();
   const GridRay gridRay = seq.grid ? seq.grid->ray(ray.origin, invDir) : GridRay{};
   for (uint32_t step = 0; step < maxSteps && idx < size; ++step) {

@@ -119,9 +119,10 @@ void writeOctantSequences(const OctantZero& zero, std::span<const Triangle> tris
         chunk[filled++] = source[i];
       } else {
         // A subtree keeps its size in every order: its escape moves with it.
-        chunk[filled++] = glm::vec4(glm::vec3(source[i]), packIndex(at + (end(i) - i)));
+        const uint32_t escape = end(i);
+        chunk[filled++] = glm::vec4(glm::vec3(source[i]), packIndex(at + (escape - i)));
         children.clear();
-        for (uint32_t c = i + 1; c < end(i); c = end(c))
+        for (uint32_t c = i + 1; c < escape; c = end(c))
           children.emplace_back(octant == 0 ? 0.0f : orderKey(quantized(c), diagonal), c);
         // Stable on sequence 0's order: ties as octant 0 has them.
         std::stable_sort(children.begin(), children.end(),
