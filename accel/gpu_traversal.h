@@ -24,12 +24,14 @@ class StreamKernel;
 // bounce's ray generation, traversal and thesis shading in one pass. It is
 // its family's kernels_glsl/<family>/*_fused.frag, which includes camera.glsl
 // and shade_thesis.glsl beside its walk; the renderer compiles it with
-// `defines` and the STREAM_PAGES of its own streams and `streams`, sets the
+// `defines`, the STREAM_PAGES of its own streams and `streams` and the
+// LARGE_STREAM_PAGES of `largeStream` (texel_address.glsl), sets the
 // camera and shading inputs, and calls GpuTraversal::bindFused for the rest.
 struct FusedBounce {
   std::string glslFile;
   std::vector<std::string> defines;
   std::vector<const ConstInputStream*> streams;
+  const ConstInputStream* largeStream = nullptr;
 };
 
 class GpuTraversal {

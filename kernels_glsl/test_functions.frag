@@ -1,6 +1,7 @@
 // Runs one shared GLSL function per element so tests can compare it with its
 // C++ twin (tests/stream_kernels_test.cpp). Chosen by a define:
 //   TEST_FETCH:    out = fetchTexel(uData, element index)
+//   TEST_FETCH_LARGE: out = fetchTexel(uLargeData, element index), a LargeConstStream
 //   TEST_SLAB:     out.x = intersectsBox(origin in0, invDir of in1, lo in2, hi in3, tBest in3.w)
 //   TEST_TRIANGLE: out = the hit after intersectTriangle(origin in0, dir in1, a in2, b in3, c in4, id in4.w)
 //                  from a hit record (tBest in1.w, 0, 0, -1)
@@ -19,6 +20,7 @@
 #endif
 
 uniform ConstStream uData;
+uniform LargeConstStream uLargeData;
 uniform sampler2D uIn0;
 uniform sampler2D uIn1;
 uniform sampler2D uIn2;
@@ -36,6 +38,9 @@ void main() {
 #if defined(TEST_FETCH)
   uint index = uint(gl_FragCoord.y) * uint(uWidth) + uint(gl_FragCoord.x);
   outResult = fetchTexel(uData, index);
+#elif defined(TEST_FETCH_LARGE)
+  uint index = uint(gl_FragCoord.y) * uint(uWidth) + uint(gl_FragCoord.x);
+  outResult = fetchTexel(uLargeData, index);
 #elif defined(TEST_SLAB)
   vec4 hi = readElement(uIn3);
   bool hit = intersectsBox(readElement(uIn0).xyz, safeInverse(readElement(uIn1).xyz), readElement(uIn2).xyz, hi.xyz, hi.w);

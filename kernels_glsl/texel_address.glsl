@@ -9,55 +9,42 @@ ivec2 texelOf(uint index, uint widthLog2) {
 }
 
 // A ConstInputStream (stream/const_input_stream.h): texels split into pages
-// of 2^pageLog2, each page a texture of width 2^widthLog2. The C++ side
-// compiles each kernel with STREAM_PAGES = the most pages any of its streams
-// has; with 1 a fetch is one texelFetch, as in the thesis.
+// of 2^pageLog2, each page a texture of width 2^widthLog2. A kernel reads
+// its streams as ConstStream, compiled with STREAM_PAGES = the most pages any
+// of them has; with 1 a fetch is one texelFetch, as in the thesis. Every page
+// slot is a sampler and a stage has few (32 on llvmpipe), so a kernel whose
+// one stream is far larger than the rest (bvh-octant's eight sequences)
+// declares that one a LargeConstStream, with LARGE_STREAM_PAGES slots.
 #ifndef STREAM_PAGES
 #define STREAM_PAGES 1
 #endif
+#ifndef LARGE_STREAM_PAGES
+#define LARGE_STREAM_PAGES STREAM_PAGES
+#endif
 
-struct ConstStream {
-  sampler2D pages[STREAM_PAGES];
-  uint widthLog2;
-  uint pageLog2;
-};
+// Declares the stream type `Type` with `PAGES` sampler slots and its fetches.
+// Sampler arrays may only be indexed by dynamically uniform expressions, and
+// rays differ in the page they read: the page is selected by comparing with
+// each slot's constant index.
+#define DECLARE_CONST_STREAM(Type, PAGES)                                        \
+  struct Type {                                                                  \
+    sampler2D pages[PAGES];                                                      \
+    uint widthLog2;                                                              \
+    uint pageLog2;                                                               \
+  };                                                                             \
+  vec4 fetchTexel(Type data, uint index) {                                       \
+    if (PAGES == 1) return texelFetch(data.pages[0], texelOf(index, data.widthLog2), 0); \
+    ivec2 at = texelOf(index & ((1u << data.pageLog2) - 1u), data.widthLog2);    \
+    uint page = index >> data.pageLog2;                                          \
+    for (int p = 0; p < PAGES; ++p)                                              \
+      if (page == uint(p)) return texelFetch(data.pages[p], at, 0);              \
+    return vec4(0.0); /* beyond the data: callers never ask */                   \
+  }                                                                              \
+  /* One float of a scalar array stored four to a texel (reference lists, grid cells). */ \
+  float fetchScalar(Type data, uint index) { return fetchTexel(data, index >> 2u)[index & 3u]; }
 
-vec4 fetchTexel(ConstStream data, uint index) {
-#if STREAM_PAGES == 1
-  return texelFetch(data.pages[0], texelOf(index, data.widthLog2), 0);
-#else
-  // Sampler arrays may only be indexed by dynamically uniform expressions,
-  // and rays differ in the page they read: select the page with constants.
-  ivec2 at = texelOf(index & ((1u << data.pageLog2) - 1u), data.widthLog2);
-  uint page = index >> data.pageLog2;
-  if (page == 0u) return texelFetch(data.pages[0], at, 0);
-  if (page == 1u) return texelFetch(data.pages[1], at, 0);
-#if STREAM_PAGES > 2
-  if (page == 2u) return texelFetch(data.pages[2], at, 0);
-#endif
-#if STREAM_PAGES > 3
-  if (page == 3u) return texelFetch(data.pages[3], at, 0);
-#endif
-#if STREAM_PAGES > 4
-  if (page == 4u) return texelFetch(data.pages[4], at, 0);
-#endif
-#if STREAM_PAGES > 5
-  if (page == 5u) return texelFetch(data.pages[5], at, 0);
-#endif
-#if STREAM_PAGES > 6
-  if (page == 6u) return texelFetch(data.pages[6], at, 0);
-#endif
-#if STREAM_PAGES > 7
-  if (page == 7u) return texelFetch(data.pages[7], at, 0);
-#endif
-  return vec4(0.0);  // beyond the data: callers never ask
-#endif
-}
-
-// One float of a scalar array stored four to a texel (reference lists, grid cells).
-float fetchScalar(ConstStream data, uint index) {
-  return fetchTexel(data, index >> 2u)[index & 3u];
-}
+DECLARE_CONST_STREAM(ConstStream, STREAM_PAGES)
+DECLARE_CONST_STREAM(LargeConstStream, LARGE_STREAM_PAGES)
 
 // Raw bits offset by 2^23: never denormal, exact beyond 2^24.
 float packIndex(uint index) { return uintBitsToFloat(index + 0x00800000u); }

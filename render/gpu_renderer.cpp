@@ -59,6 +59,7 @@ GpuRenderer::GpuRenderer(const Scene& scene, GpuTraversal& traversal, int width,
     streams.insert(streams.end(), {triangles_.get(), &materials_});
     std::vector<std::string> defines = fused->defines;
     defines.push_back(streamPagesDefine(streams));
+    if (fused->largeStream) defines.push_back(largeStreamPagesDefine(*fused->largeStream));
     defines.push_back(shadingTexelsDefine(scene));
     fused_ = std::make_unique<StreamKernel>("fused bounce", fused->glslFile, StreamKernel::Depth::Test, defines);
     traversal.bindFused(*fused_);

@@ -73,21 +73,22 @@ uint32_t ConstInputStream::largestPageLog2() {
   return sideLog2 + heightLog2;
 }
 
-ConstInputStream::ConstInputStream(std::span<const glm::vec4> texels, const std::string& what, uint64_t maxPageTexels)
-    : ConstInputStream(texels.size(), what, maxPageTexels) {
+ConstInputStream::ConstInputStream(std::span<const glm::vec4> texels, const std::string& what, uint64_t maxPageTexels,
+                                   uint32_t maxPages)
+    : ConstInputStream(texels.size(), what, maxPageTexels, maxPages) {
   write(0, texels);  // a throw here runs the destructor: the delegated constructor has finished
 }
 
-ConstInputStream::ConstInputStream(size_t count, const std::string& what, uint64_t maxPageTexels)
+ConstInputStream::ConstInputStream(size_t count, const std::string& what, uint64_t maxPageTexels, uint32_t maxPages)
     : what_(what), size_(count) {
   uint32_t pageLog2 = largestPageLog2();
   if (maxPageTexels > 0) pageLog2 = std::min(pageLog2, uint32_t(std::bit_width(maxPageTexels)) - 1);
   const size_t pageTexels = size_t(1) << pageLog2;
   const size_t pages = std::max<size_t>(1, (size_ + pageTexels - 1) / pageTexels);
-  if (pages > kMaxStreamPages)
+  if (pages > maxPages)
     throw GlError(what + ": " + std::to_string(size_) + " texels need " + std::to_string(pages) +
                   " textures of " + std::to_string(pageTexels) + " texels; a kernel reads at most " +
-                  std::to_string(kMaxStreamPages));
+                  std::to_string(maxPages));
   if (pages == 1) {
     // As wide as high: the layout of a single texture since the thesis.
     widthLog2_ = chooseWidthLog2(std::max<size_t>(size_, 1));
@@ -135,6 +136,10 @@ std::string streamPagesDefine(const std::vector<const ConstInputStream*>& stream
   uint32_t pages = 1;
   for (const ConstInputStream* s : streams) pages = std::max(pages, s->pageCount());
   return "STREAM_PAGES " + std::to_string(pages);
+}
+
+std::string largeStreamPagesDefine(const ConstInputStream& stream) {
+  return "LARGE_STREAM_PAGES " + std::to_string(stream.pageCount());
 }
 
 }  // namespace passtrace

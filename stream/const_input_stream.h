@@ -26,19 +26,26 @@ namespace passtrace {
 // A kernel reads at most this many pages per stream (8 x 2^26 texels = 8 GiB
 // on llvmpipe); three paged streams then still fit the 32 texture units.
 inline constexpr uint32_t kMaxStreamPages = 8;
+// ... and of its one large stream, if it declares one (LargeConstStream in
+// kernels_glsl/texel_address.glsl; bvh-octant's sequences, 16 texels per
+// triangle where its other streams have 1-4): 16 GiB on llvmpipe.
+inline constexpr uint32_t kMaxLargeStreamPages = 16;
 
 class ConstInputStream {
  public:
   // `what` names the data in error messages. `maxPageTexels` (rounded down to
   // a power of two; 0 = the largest texture the GL accepts) lets tests and
   // --page-texels exercise paging on small data. Throws GlError if the data
-  // needs more than kMaxStreamPages pages or the GL fails to store it
-  // (GL_OUT_OF_MEMORY is reported as such).
-  ConstInputStream(std::span<const glm::vec4> texels, const std::string& what, uint64_t maxPageTexels = 0);
+  // needs more than `maxPages` pages (kMaxLargeStreamPages for a kernel's
+  // large stream) or the GL fails to store it (GL_OUT_OF_MEMORY is reported
+  // as such).
+  ConstInputStream(std::span<const glm::vec4> texels, const std::string& what, uint64_t maxPageTexels = 0,
+                   uint32_t maxPages = kMaxStreamPages);
   // Storage for `count` texels, filled afterwards by write(): data made in
   // pieces (bvh-octant's eight sequences) goes up piece by piece, and the
   // whole never exists in memory beside the texture.
-  ConstInputStream(size_t count, const std::string& what, uint64_t maxPageTexels = 0);
+  ConstInputStream(size_t count, const std::string& what, uint64_t maxPageTexels = 0,
+                   uint32_t maxPages = kMaxStreamPages);
   ~ConstInputStream();
   ConstInputStream(const ConstInputStream&) = delete;
   ConstInputStream& operator=(const ConstInputStream&) = delete;
@@ -73,5 +80,7 @@ class ConstInputStream {
 // a single plain texelFetch).
 std::string streamPagesDefine(std::initializer_list<const ConstInputStream*> streams);
 std::string streamPagesDefine(const std::vector<const ConstInputStream*>& streams);
+// "LARGE_STREAM_PAGES n" for the kernel's one LargeConstStream.
+std::string largeStreamPagesDefine(const ConstInputStream& stream);
 
 }  // namespace passtrace

@@ -79,7 +79,7 @@ void StreamKernel::bindInput(const char* name, const ConstInputStream& stream) {
   if (stream.pageCount() > 1 && location(slot(0).c_str()) != -1 && location(slot(stream.pageCount() - 1).c_str()) == -1)
     throw GlError("kernel " + name_ + ": " + base + " has " + std::to_string(stream.pageCount()) +
                   " texture pages but the kernel was compiled for fewer (STREAM_PAGES)");
-  for (uint32_t i = 0; i < kMaxStreamPages && (i == 0 || location(slot(i).c_str()) != -1); ++i)
+  for (uint32_t i = 0; i < kMaxLargeStreamPages && (i == 0 || location(slot(i).c_str()) != -1); ++i)
     bindTexture(slot(i).c_str(), stream.texture(std::min(i, stream.pageCount() - 1)));
   set((base + ".widthLog2").c_str(), stream.widthLog2());
   set((base + ".pageLog2").c_str(), stream.pageLog2());

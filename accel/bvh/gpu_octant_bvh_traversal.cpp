@@ -14,9 +14,10 @@ GpuOctantBvhTraversal::GpuOctantBvhTraversal(OctantZero zero, std::span<const Tr
       // The triangles are in their texture: their array goes before the sequences' texture takes its pages
       // (llvmpipe's are resident once allocated).
       sequences_([&] { std::vector<glm::vec4>().swap(zero.triangles); return kOctants * sequenceSize_; }(),
-                 "the eight octant BVH sequences", config.maxPageTexels),
+                 "the eight octant BVH sequences", config.maxPageTexels, kMaxLargeStreamPages),
       kernel_("bvh_octant_traverse", "bvh/bvh_octant_traverse.frag", StreamKernel::Depth::Test,
-              {streamPagesDefine({&sequences_, &triangles_}), triangleTestDefine(config.build.triangleTest)}),
+              {streamPagesDefine({&triangles_}), largeStreamPagesDefine(sequences_),
+               triangleTestDefine(config.build.triangleTest)}),
       stats_(std::move(stats)),
       loopLimit_(config.loopLimit) {
   // Flattened as they go up: the build's time includes the writing.
@@ -29,7 +30,7 @@ GpuOctantBvhTraversal::GpuOctantBvhTraversal(OctantZero zero, std::span<const Tr
   bindFused(kernel_);  // the traversal pass reads the same walk inputs
   if (fused == Fused::Yes && config.onePassPerBounce)
     fused_ = FusedBounce{"bvh/bvh_octant_fused.frag", {triangleTestDefine(config.build.triangleTest)},
-                         {&sequences_, &triangles_}};
+                         {&triangles_}, &sequences_};
 }
 
 void GpuOctantBvhTraversal::bindFused(StreamKernel& kernel) const {

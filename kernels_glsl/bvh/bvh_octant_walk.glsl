@@ -10,7 +10,7 @@
 // bounce (bvh_octant_fused.frag). Needs texel_address.glsl and intersect.glsl.
 #include "bvh/box_grid.glsl"
 
-uniform ConstStream uSequences;        // the eight escape-index sequences
+uniform LargeConstStream uSequences;   // the eight escape-index sequences
 uniform ConstStream uOctantTriangles;  // (v1, packed id), v2 of each leaf slot
 uniform uint uSequenceSize;            // texels in one sequence: the end of traversal
 uniform int uLoopLimit;                // traversal steps per pass (tracy's -l)

@@ -36,11 +36,15 @@ std::vector<glm::vec4> numbered(int count) {
   return data;
 }
 
-// Fetches element i of `input` into pixel i of a count x 1 stream.
+// Fetches element i of `input` into pixel i of a count x 1 stream, read as a
+// ConstStream (`pagesDefine` STREAM_PAGES) or, with a LARGE_STREAM_PAGES
+// define, as a LargeConstStream.
 std::vector<glm::vec4> fetchAll(const ConstInputStream& input, int count, const std::string& pagesDefine) {
   InOutStream out(count, 1, 1);
-  StreamKernel fetch("fetch", "test_functions.frag", StreamKernel::Depth::Test, {"TEST_FETCH", pagesDefine});
-  fetch.bindInput("uData", input);
+  const bool large = pagesDefine.starts_with("LARGE_");
+  StreamKernel fetch("fetch", "test_functions.frag", StreamKernel::Depth::Test,
+                     {large ? "TEST_FETCH_LARGE" : "TEST_FETCH", pagesDefine});
+  fetch.bindInput(large ? "uLargeData" : "uData", input);
   fetch.set("uWidth", count);
   out.enable();
   out.clearDepth(1.0f);
@@ -103,6 +107,23 @@ TEST_F(GlTest, TooManyPagesIsAnErrorNamingTheData) {
   } catch (const GlError& e) {
     EXPECT_NE(std::string(e.what()).find("the test sequence"), std::string::npos) << e.what();
   }
+}
+
+// A kernel's one large stream (bvh-octant's sequences) may have more pages
+// than its others, up to kMaxLargeStreamPages, each read where C++ puts it.
+TEST_F(GlTest, LargeStreamHasMorePagesThanOthers) {
+  const std::vector<glm::vec4> data = numbered(60);
+  EXPECT_THROW(ConstInputStream(data, "test data", 4), GlError);  // 15 pages
+  EXPECT_THROW(ConstInputStream(data, "test data", 2, kMaxLargeStreamPages), GlError);  // 30 pages
+  ConstInputStream input(data, "test data", 4, kMaxLargeStreamPages);
+  ASSERT_EQ(input.pageCount(), 15u);
+  ASSERT_GT(input.pageCount(), kMaxStreamPages);
+  const std::vector<glm::vec4> result = fetchAll(input, 60, largeStreamPagesDefine(input));
+  for (int i = 0; i < 60; ++i) EXPECT_EQ(result[i], data[i]) << "texel " << i;
+  // The kernel's other streams keep their own STREAM_PAGES: read as one of those, the data is refused.
+  StreamKernel fetch("fetch", "test_functions.frag", StreamKernel::Depth::Test,
+                     {"TEST_FETCH", "STREAM_PAGES 8", largeStreamPagesDefine(input)});
+  EXPECT_THROW(fetch.bindInput("uData", input), GlError);
 }
 
 TEST_F(GlTest, KernelCompiledForFewerPagesRefusesPagedData) {
