@@ -1,5 +1,7 @@
 #include "accel/registry.h"
 
+#include <cmath>
+
 #include <algorithm>
 #include <cstdio>
 #include <stdexcept>
@@ -23,67 +25,70 @@ namespace {
 using enum RendererId;
 using P = BuildParam;
 
-// One row per structure. Memory: peak bytes per triangle measured as
-// registry.h's MemoryModel says (CPU column for kd-restart, kd-backtrack and
-// grid-stream: their kernels' CPU mirrors). dacrt's grows with the threads:
-// each running band holds 4 bytes of triangle index per triangle (measured
-// with 2).
+// One row per structure. Memory: bytes per triangle and growth measured by
+// scripts/memory_models.py as registry.h's MemoryModel says (2026-11-28, two
+// threads; docs/measurements.md; the CPU column of kd-restart, kd-backtrack
+// and grid-stream is their kernels' CPU mirrors). dacrt's grows with the
+// threads: each running band holds 4 bytes of triangle index per triangle.
 std::vector<Structure> makeRows() {
   std::vector<Structure> rows = {
       {.name = "kk-bvh", .family = "bvh",
        .description = "Kay/Kajiya BVH (SAH-ordered splits), walked as its escape-index sequence",
        .renderers = {Cpu, Gpu}, .number = 0, .numberedOn = {Cpu, Gpu},
        .cpu = makeKkBvhCpu, .stream = makeKkBvhStream, .mirror = makeKkBvhCpu,
-       .memory = {230, 255}, .reads = {P::SwapChildren}, .cone = makeKkBvhCone,
+       .memory = {.cpu = {221, 1.03}, .gpu = {217, 1.06}}, .reads = {P::SwapChildren}, .cone = makeKkBvhCone,
        .coneStream = makeKkBvhStreamCone},
       {.name = "gs-bvh", .family = "bvh",
        .description = "Goldsmith/Salmon BVH (insertion build), walked as its escape-index sequence",
        .renderers = {Cpu, Gpu}, .number = 1, .numberedOn = {Cpu, Gpu},
        .cpu = makeGsBvhCpu, .stream = makeGsBvhStream, .mirror = makeGsBvhCpu,
-       .memory = {232, 233}, .reads = {P::GsTries}},
+       .memory = {.cpu = {460, 1.01}, .gpu = {456, 1.05}}, .reads = {P::GsTries}},
       {.name = "kd-tree", .family = "kd",
        .description = "kd-tree, SAH with split clipping, stack traversal",
        .renderers = {Cpu}, .number = 2, .numberedOn = {Cpu},
        .cpu = makeKdTreeCpu,
-       .memory = {282, 0}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination, P::Dynamic},
+       .memory = {.cpu = {559}}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination, P::Dynamic},
        .cpuStepsVisitNodes = true, .cone = makeKdTreeCone},
       {.name = "kd-pbrt", .family = "kd",
        .description = "kd-tree built the pbrt way (pbrt's constants), stack traversal",
        .renderers = {Cpu}, .number = 3, .numberedOn = {Cpu},
        .cpu = makeKdPbrtCpu,
-       .memory = {947, 0}, .reads = {P::KdMaxDepth}, .cpuStepsVisitNodes = true, .cone = makeKdPbrtCone},
+       .memory = {.cpu = {3548}}, .reads = {P::KdMaxDepth}, .cpuStepsVisitNodes = true, .cone = makeKdPbrtCone},
       {.name = "grid", .family = "grid",
        .description = "uniform grid: 3D-DDA on the CPU, stream kernels on the GPU (--grid-kernels)",
        .renderers = {Cpu, Gpu}, .number = 4, .numberedOn = {Cpu, Gpu},
        .cpu = makeGridCpu, .stream = makeGridStream, .mirror = makeGridStreamMirror,
-       .memory = {1148, 1265}, .reads = {P::GridMultiplier, P::GridKernels}, .cpuStepsVisitNodes = true},
+       .memory = {.cpu = {1162}, .gpu = {1273}},
+       .reads = {P::GridMultiplier, P::GridKernels}, .cpuStepsVisitNodes = true},
       {.name = "kk-bvh-recursive", .family = "bvh",
        .description = "Kay/Kajiya BVH descended recursively",
        .renderers = {Cpu}, .number = 5, .numberedOn = {Cpu},
        .cpu = makeKkBvhRecursiveCpu,
-       .memory = {164, 0}, .reads = {P::SwapChildren}},
+       .memory = {.cpu = {157, 1.04}}, .reads = {P::SwapChildren}},
       {.name = "gs-bvh-recursive", .family = "bvh",
        .description = "Goldsmith/Salmon BVH descended recursively",
        .renderers = {Cpu}, .number = 6, .numberedOn = {Cpu},
        .cpu = makeGsBvhRecursiveCpu,
-       .memory = {232, 0}, .reads = {P::GsTries}},
+       .memory = {.cpu = {469, 1.02}}, .reads = {P::GsTries}},
       // The thesis's octree traversal keeps number 7 (it was the row "octree"
       // before Revelles' traversal took that name, see the row "octree" below).
       {.name = "octree-descent", .family = "octree",
        .description = "octree, front-to-back descent with box tests (the thesis's)",
        .renderers = {Cpu}, .number = 7, .numberedOn = {Cpu},
        .cpu = makeOctreeDescentCpu,
-       .memory = {70, 0}, .reads = {}, .cpuStepsVisitNodes = true},
+       .memory = {.cpu = {172, 1.04}}, .reads = {}, .cpuStepsVisitNodes = true},
       {.name = "kd-restart", .family = "kd",
        .description = "kd-tree, stackless kd-restart (Foley & Sugerman); on the CPU the kernel's algorithm",
        .renderers = {Cpu, Gpu}, .number = 2, .numberedOn = {Gpu},
        .cpu = makeKdRestartMirror, .stream = makeKdRestartStream, .mirror = makeKdRestartMirror,
-       .memory = {394, 358}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination, P::Dynamic}},
+       .memory = {.cpu = {698}, .gpu = {639}},
+       .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination, P::Dynamic}},
       {.name = "kd-backtrack", .family = "kd",
        .description = "kd-tree, stackless kd-backtrack (parent links); on the CPU the kernel's algorithm",
        .renderers = {Cpu, Gpu}, .number = 3, .numberedOn = {Gpu},
        .cpu = makeKdBacktrackMirror, .stream = makeKdBacktrackStream, .mirror = makeKdBacktrackMirror,
-       .memory = {498, 536}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination, P::Dynamic}},
+       .memory = {.cpu = {826}, .gpu = {809, 1.01}},
+       .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination, P::Dynamic}},
       // Seed 003 ch. 6 (Horn et al. 2007), over kd-restart's tree and texels.
       // Memory measured for kd-pushdown and kd-stack (both 416 / 383; kd-restart
       // measured 416 / 383 in the same session); the short stacks hold the same
@@ -94,7 +99,8 @@ std::vector<Structure> makeRows() {
        .cpu = makeKdStreamMirror<KdStreamVariant::PushDown>,
        .stream = makeKdStream<KdStreamVariant::PushDown>,
        .mirror = makeKdStreamMirror<KdStreamVariant::PushDown>,
-       .memory = {416, 383}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination, P::Dynamic}},
+       .memory = {.cpu = {692}, .gpu = {647}},
+       .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination, P::Dynamic}},
       {.name = "kd-shortstack", .family = "kd",
        .description = "kd-tree, circular short stack (--stack-size), restart when empty; on the CPU the kernel's "
                       "algorithm",
@@ -102,7 +108,8 @@ std::vector<Structure> makeRows() {
        .cpu = makeKdStreamMirror<KdStreamVariant::ShortStack>,
        .stream = makeKdStream<KdStreamVariant::ShortStack>,
        .mirror = makeKdStreamMirror<KdStreamVariant::ShortStack>,
-       .memory = {416, 383}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination,
+       .memory = {.cpu = {699}, .gpu = {641}},
+       .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination,
                                          P::KdStackSize, P::Dynamic}},
       {.name = "kd-pushdown-shortstack", .family = "kd",
        .description = "kd-tree, short stack restarting from the push-down root; on the CPU the kernel's algorithm",
@@ -110,7 +117,8 @@ std::vector<Structure> makeRows() {
        .cpu = makeKdStreamMirror<KdStreamVariant::PushDownShortStack>,
        .stream = makeKdStream<KdStreamVariant::PushDownShortStack>,
        .mirror = makeKdStreamMirror<KdStreamVariant::PushDownShortStack>,
-       .memory = {416, 383}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination,
+       .memory = {.cpu = {692}, .gpu = {627, 1.03}},
+       .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination,
                                          P::KdStackSize, P::Dynamic}},
       {.name = "kd-stack", .family = "kd",
        .description = "kd-tree, full stack (as deep as the tree) in a per-ray storage buffer; on the CPU the "
@@ -119,19 +127,20 @@ std::vector<Structure> makeRows() {
        .cpu = makeKdStreamMirror<KdStreamVariant::Stack>,
        .stream = makeKdStream<KdStreamVariant::Stack>,
        .mirror = makeKdStreamMirror<KdStreamVariant::Stack>,
-       .memory = {416, 383}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination, P::Dynamic},
+       .memory = {.cpu = {698}, .gpu = {662}},
+       .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination, P::Dynamic},
        .coneStream = makeKdTreeStreamCone},
       {.name = "grid-stream", .family = "grid",
        .description = "the GPU uniform-grid kernel's algorithm over its texels, on the CPU",
        .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeGridStreamMirror,
-       .memory = {1243, 0}, .reads = {P::GridMultiplier}},
+       .memory = {.cpu = {1274}}, .reads = {P::GridMultiplier}},
       {.name = "dacrt", .family = "dacrt",
        .description = "divide-and-conquer ray tracing (Mora 2011): no stored structure, rays and triangles "
                       "filtered together each frame",
        .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeDacrtCpu,
-       .memory = {48, 0}, .reads = {P::DacrtRLimit, P::DacrtPLimit, P::DacrtCones, P::DacrtSplit},
+       .memory = {.cpu = {62, 1.09}}, .reads = {P::DacrtRLimit, P::DacrtPLimit, P::DacrtCones, P::DacrtSplit},
        .cpuRayGrouping = RayGrouping::Generation},
       // Seed 002: kd-restart's tree with ropes (Popov et al. 2007). Memory measured for kd-ropes and kd-compact
       // in one session in which kd-stack measured 693 bytes per triangle on the CPU.
@@ -140,7 +149,8 @@ std::vector<Structure> makeRows() {
                       "algorithm",
        .renderers = {Cpu, Gpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeKdRopesMirror, .stream = makeKdRopesStream, .mirror = makeKdRopesMirror,
-       .memory = {870, 865}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination}},
+       .memory = {.cpu = {883}, .gpu = {835}},
+       .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination}},
       // Seed 002's standard kd traversal: kd-stack over 8-byte nodes (kd_compact_node.h).
       {.name = "kd-compact", .family = "kd",
        .description = "kd-tree, full stack as kd-stack over compact 8-byte nodes; on the CPU the kernel's algorithm",
@@ -148,41 +158,43 @@ std::vector<Structure> makeRows() {
        .cpu = makeKdStreamMirror<KdStreamVariant::Compact>,
        .stream = makeKdStream<KdStreamVariant::Compact>,
        .mirror = makeKdStreamMirror<KdStreamVariant::Compact>,
-       .memory = {620, 598}, .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination}},
+       .memory = {.cpu = {667}, .gpu = {605}},
+       .reads = {P::KdMinElements, P::KdMaxDepth, P::KdBuilder, P::KdTermination}},
       // Seed 002 (Aila & Laine 2009); the CPU row runs the kernel's algorithm.
       {.name = "bvh-stack", .family = "bvh_stack",
        .description = "binary BVH (--bvh-builder sah, sbvh or middle), two child boxes per node, stack traversal "
                       "nearer child first; on the CPU the kernel's algorithm",
        .renderers = {Cpu, Gpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeBvhStackCpu, .stream = makeBvhStackStream, .mirror = makeBvhStackCpu,
-       .memory = {144, 224}, .reads = {P::BvhBuilder}},  // measured with the default sah build
+       .memory = {.cpu = {260, 1.06}, .gpu = {217, 1.11}},
+       .reads = {P::BvhBuilder}},  // measured with the default sah build
       // Wächter & Keller 2006; the CPU runs the kernel's algorithm (bih_structures.h).
       {.name = "bih", .family = "bih",
        .description = "bounding interval hierarchy (two clip planes per node, global-box splits), stack traversal; "
                       "on the CPU the kernel's algorithm",
        .renderers = {Cpu, Gpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeBihCpu, .stream = makeBihStream, .mirror = makeBihCpu,
-       .memory = {154, 251}, .reads = {}},
+       .memory = {.cpu = {150, 1.04}, .gpu = {165, 1.05}}, .reads = {}},
       // Revelles et al. 2000 (not in the thesis, so unnumbered: -r 1 -a 7 runs
       // what it always ran, the descent above).
       {.name = "octree", .family = "octree",
        .description = "octree, Revelles et al.'s parametric traversal; on the CPU the kernel's algorithm",
        .renderers = {Cpu, Gpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeOctreeCpu, .stream = makeOctreeStream, .mirror = makeOctreeCpu,
-       .memory = {208, 263}, .reads = {}},
+       .memory = {.cpu = {273, 1.02}, .gpu = {309, 1.05}}, .reads = {}},
       {.name = "bvh8", .family = "wide_bvh",
        .description = "8-wide BVH collapsed from a binned SAH BVH (built on all cores; --bvh8-builder sbvh: with "
                       "spatial splits), AVX2 node and triangle tests",
        .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeBvh8Cpu,
-       // The peak's slope from spheres 1M to 2M (-b 2): 133 B/tri binned, 164 with --bvh8-builder sbvh; the
-       // larger, so the check holds for either builder (was 211, measured before the builder's own savings).
-       .memory = {165, 0}, .reads = {P::Bvh8Builder}},
+       // The larger of the two builders' models, so the check holds for either: binned {131, 1.04},
+       // --bvh8-builder sbvh 168 at 1 M and 134 at 4 M triangles.
+       .memory = {.cpu = {168}}, .reads = {P::Bvh8Builder}},
       {.name = "bvh8-packet", .family = "wide_bvh",
        .description = "bvh8 traced in packets of 32 rays (8x4 pixels) for primary and shadow rays",
        .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeBvh8PacketCpu,
-       .memory = {165, 0}, .reads = {P::Bvh8Builder}, .cpuRayGrouping = RayGrouping::Tiles},
+       .memory = {.cpu = {168}}, .reads = {P::Bvh8Builder}, .cpuRayGrouping = RayGrouping::Tiles},  // as bvh8
       // Issue 17 item 3: kk-bvh's kernel over eight child orders (Hachisuka's MTBVH, one order per octant) of
       // bvh-stack's tree.
       {.name = "bvh-octant", .family = "bvh",
@@ -191,17 +203,17 @@ std::vector<Structure> makeRows() {
                       "once for the eight); on the CPU the kernel's algorithm over the same texels",
        .renderers = {Cpu, Gpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeOctantBvhCpu, .stream = makeOctantBvhStream, .mirror = makeOctantBvhCpu,
-       // Measured as the peak's slope from spheres 1M to 2M (1,009,202 and 2,017,202 triangles): the GPU's 394
-       // (fused too) with boxes of one quantized texel and one-texel leaves over a shared triangle stream, written
-       // from octant 0's sequence once the tree is freed (was 607, 1,313, 2,009); the CPU's 481 (was 922).
-       .memory = {490, 400}, .reads = {P::BvhBuilder}},
+       // The GPU's (fused too) with boxes of one quantized texel and one-texel leaves over a shared triangle
+       // stream, written from octant 0's sequence once the tree is freed; --bvh-builder sbvh's (361 at
+       // 1 M, 368 at 4 M; the default's 366). The steps that got it there: docs/measurements.md.
+       .memory = {.cpu = {491}, .gpu = {368}}, .reads = {P::BvhBuilder}},
       // Issue 17 item 3, fewer passes per bounce: bvh-octant's walk with ray generation and shading in one pass.
       {.name = "bvh-octant-fused", .family = "bvh",
        .description = "bvh-octant on the stream path with a primary bounce in one pass: ray generation, the "
                       "octant walk and thesis shading fused, at -l 0 (other bounces, shadings and -l pass by pass)",
        .renderers = {Gpu}, .number = std::nullopt, .numberedOn = {},
        .stream = makeOctantBvhFusedStream, .mirror = makeOctantBvhCpu,
-       .memory = {0, 400}, .reads = {P::BvhBuilder}},  // bvh-octant's data and the fused pass (no CPU row; was 640)
+       .memory = {.gpu = {368}}, .reads = {P::BvhBuilder}},  // bvh-octant's data and the fused pass
   };
 #if PASSTRACE_HAVE_EMBREE
   rows.push_back({.name = "embree", .family = "embree",
@@ -210,7 +222,7 @@ std::vector<Structure> makeRows() {
                                  "through the CPU renderer",
                   .renderers = {Embree}, .number = std::nullopt, .numberedOn = {},
                   .cpu = makeEmbreeCpu,
-                  .memory = {202, 0}, .reads = {}});
+                  .memory = {.cpu = {192, 1.02}}, .reads = {}});
 #endif
   return rows;
 }
@@ -236,6 +248,11 @@ std::string_view rayGroupingName(RayGrouping grouping) {
     case RayGrouping::Generation: return "generation";
   }
   return "?";
+}
+
+double MemoryCost::bytesFor(uint64_t triangles) const {
+  const double n = double(triangles);
+  return bytesPerTriangle * n * std::pow(std::max(1.0, n / kMemoryModelTriangles), growth - 1);
 }
 
 std::string_view rendererTitle(RendererId renderer) {

@@ -81,14 +81,25 @@ inline constexpr BuildParam kBuildParams[] = {
     BuildParam::DacrtSplit, BuildParam::BvhBuilder,
     BuildParam::Bvh8Builder};
 
-// Peak resident bytes per triangle of a run, measured (apps' memory check):
-// the slope between 1 M and 2 M triangles of the procedural "spheres" scene,
-//   /usr/bin/time -f %M passtrace -s spheres --triangles N -r R -a A -w 64 -b 1 -t 1
-// on llvmpipe (GPU runs include llvmpipe's texture copies). 0 = not measured:
-// the check then assumes the largest of the same renderer's structures.
+// Peak resident bytes of a run beyond the process's base, measured for the
+// memory check (render/memory_check.h) by scripts/memory_models.py: the
+// procedural "spheres" at 1 M and 4 M triangles,
+//   passtrace -s spheres --triangles N -r R -a A -w 64 -b 1
+// at the default thread count (GPU runs include llvmpipe's texture copies),
+// less the same run at 1,000 triangles, fitted as c N^growth. Bytes 0 = not
+// measured: the check then assumes the most any row of the renderer needs.
+struct MemoryCost {
+  double bytesPerTriangle = 0;  // at kMemoryModelTriangles
+  // 1: linear. Above: bytes per triangle grow as (N / kMemoryModelTriangles)^(growth - 1)
+  // (kd-trees' references outgrow their triangles); not lowered below that size.
+  double growth = 1;
+  double bytesFor(uint64_t triangles) const;
+};
+inline constexpr double kMemoryModelTriangles = 4036802;  // --triangles 4000000
+
 struct MemoryModel {
-  double cpuBytesPerTriangle = 0;  // on the CPU renderer (and Embree's)
-  double gpuBytesPerTriangle = 0;  // on the GPU stream renderer
+  MemoryCost cpu;  // on the CPU renderer (and Embree's)
+  MemoryCost gpu;  // on the GPU stream renderer
 };
 
 using CpuFactory = std::unique_ptr<CpuAccelerator> (*)(std::span<const Triangle>, const AccelBuildConfig&);

@@ -32,25 +32,25 @@ std::string gib(double bytes) {
   return text;
 }
 
-double bytesPerTriangle(RendererId renderer, const Structure& s) {
-  return renderer == RendererId::Gpu ? s.memory.gpuBytesPerTriangle : s.memory.cpuBytesPerTriangle;
+const MemoryCost& costOn(RendererId renderer, const Structure& s) {
+  return renderer == RendererId::Gpu ? s.memory.gpu : s.memory.cpu;
 }
 
 }  // namespace
 
 uint64_t estimatedRunBytes(RendererId renderer, const Structure* structure, uint64_t triangles, uint64_t pixels,
                            double extraBytesPerPixel) {
-  double perTriangle = kPreviewBytesPerTriangle;
+  double sceneBytes = kPreviewBytesPerTriangle * double(triangles);
   if (structure) {
-    perTriangle = bytesPerTriangle(renderer, *structure);
+    sceneBytes = costOn(renderer, *structure).bytesFor(triangles);
     // Not measured (a new structure): the most any measured one needs there.
-    if (perTriangle <= 0)
+    if (costOn(renderer, *structure).bytesPerTriangle <= 0)
       for (const Structure& s : structures())
-        if (s.runsOn(renderer)) perTriangle = std::max(perTriangle, bytesPerTriangle(renderer, s));
+        if (s.runsOn(renderer)) sceneBytes = std::max(sceneBytes, costOn(renderer, s).bytesFor(triangles));
   }
   const bool gl = renderer == RendererId::Gpu || renderer == RendererId::OpenGl;
   const double perPixel = (gl ? kGpuBytesPerPixel : kCpuBytesPerPixel) + extraBytesPerPixel;
-  return uint64_t(kMargin * (kBaseBytes + perTriangle * double(triangles) + perPixel * double(pixels)));
+  return uint64_t(kMargin * (kBaseBytes + sceneBytes + perPixel * double(pixels)));
 }
 
 uint64_t residentBytes() {

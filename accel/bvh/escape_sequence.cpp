@@ -28,8 +28,10 @@ std::vector<uint32_t> leafSlots(const Bvh& bvh) {
   return slots;
 }
 
-std::vector<glm::vec4> sharedTriangleTexels(const Bvh& bvh, std::span<const Triangle> tris) {
-  const std::vector<uint32_t> slots = leafSlots(bvh);
+std::vector<glm::vec4> sharedTriangleTexels(const Bvh& bvh, std::span<const Triangle> tris,
+                                            std::span<const uint32_t> slots) {
+  const std::vector<uint32_t> ownSlots = slots.empty() ? leafSlots(bvh) : std::vector<uint32_t>{};
+  if (!ownSlots.empty()) slots = ownSlots;
   std::vector<glm::vec4> texels(2 * bvh.leafCount());
   for (size_t i = 0; i < bvh.nodes.size(); ++i) {
     const BvhNode& node = bvh.nodes[i];

@@ -103,7 +103,9 @@ void writeLeafTexels(glm::vec4* out, const Triangle& tri, uint32_t triangle, uin
 
 // Per node: a leaf's rank among the leaves in depth-first stored order (kNoHit for inner nodes).
 std::vector<uint32_t> leafSlots(const Bvh& bvh);
-// LeafTexels::Shared's triangle stream: (v1, packIndex(triangle)), (v2, 0) per leaf, in slot order.
-std::vector<glm::vec4> sharedTriangleTexels(const Bvh& bvh, std::span<const Triangle> tris);
+// LeafTexels::Shared's triangle stream: (v1, packIndex(triangle)), (v2, 0) per leaf, in slot order
+// (`slots` as leafSlots(bvh) gives them; empty: computed here).
+std::vector<glm::vec4> sharedTriangleTexels(const Bvh& bvh, std::span<const Triangle> tris,
+                                            std::span<const uint32_t> slots = {});
 
 }  // namespace passtrace

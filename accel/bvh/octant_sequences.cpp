@@ -84,7 +84,9 @@ OctantZero flattenOctantZero(const Bvh& bvh, std::span<const Triangle> tris) {
   if (bvh.empty()) return {};
   const BoxGrid grid = octantBoxGrid(bvh);
   const Bvh zero = orderChildrenForOctant(bvh, 0, grid);
-  OctantZero out{flattenEscapeSequence(zero, tris, LeafTexels::Shared, {}, &grid), sharedTriangleTexels(zero, tris), {}};
+  const std::vector<uint32_t> slots = leafSlots(zero);
+  OctantZero out{flattenEscapeSequence(zero, tris, LeafTexels::Shared, slots, &grid),
+                 sharedTriangleTexels(zero, tris, slots), {}};
   out.slotTriangles.reserve(out.triangles.size() / 2);
   for (size_t slot = 0; 2 * slot < out.triangles.size(); ++slot)
     out.slotTriangles.push_back(unpackIndex(out.triangles[2 * slot].w));

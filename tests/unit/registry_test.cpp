@@ -102,8 +102,12 @@ TEST(Registry, BuiltStructuresCarryTheRowName) {
 
 TEST(Registry, MemoryModelMeasuredForEveryRendererOfEveryRow) {
   for (const Structure& s : structures()) {
-    if (s.runsOn(RendererId::Cpu) || s.runsOn(RendererId::Embree)) { EXPECT_GT(s.memory.cpuBytesPerTriangle, 0) << s.name; }
-    if (s.runsOn(RendererId::Gpu)) { EXPECT_GT(s.memory.gpuBytesPerTriangle, 0) << s.name; }
+    if (s.runsOn(RendererId::Cpu) || s.runsOn(RendererId::Embree)) { EXPECT_GT(s.memory.cpu.bytesPerTriangle, 0) << s.name; }
+    if (s.runsOn(RendererId::Gpu)) { EXPECT_GT(s.memory.gpu.bytesPerTriangle, 0) << s.name; }
+    for (const MemoryCost& cost : {s.memory.cpu, s.memory.gpu}) {
+      EXPECT_GE(cost.growth, 1.0) << s.name;  // never extrapolated downwards
+      EXPECT_LT(cost.growth, 1.5) << s.name;  // a fit gone wrong
+    }
   }
 }
 
