@@ -91,7 +91,7 @@ inline constexpr BuildParam kBuildParams[] = {
 struct MemoryCost {
   double bytesPerTriangle = 0;  // at kMemoryModelTriangles
   // 1: linear. Above: bytes per triangle grow as (N / kMemoryModelTriangles)^(growth - 1)
-  // (kd-trees' references outgrow their triangles); not lowered below that size.
+  // (measured 1.00-1.11); not lowered below that size.
   double growth = 1;
   double bytesFor(uint64_t triangles) const;
 };

@@ -10,6 +10,7 @@ import tempfile
 
 SCRIPTS = pathlib.Path(__file__).resolve().parents[2] / "scripts"
 sys.path.insert(0, str(SCRIPTS))
+import passtrace_registry  # noqa: E402
 from memory_models import fit  # noqa: E402
 
 
@@ -37,17 +38,20 @@ def main():
     parser.add_argument("--binary", required=True)
     args = parser.parse_args()
     check_fit()
+    # The registry's first row on both the CPU and the stream renderer.
+    row = next(a["name"] for a in passtrace_registry.load(args.binary)["accelerators"]
+               if {"cpu", "gpu"} <= set(a["renderers"]))
     with tempfile.TemporaryDirectory() as tmp:
         out = pathlib.Path(tmp) / "models.json"
         proc = subprocess.run([sys.executable, str(SCRIPTS / "memory_models.py"), "--binary", args.binary,
-                               "--rows", "kk-bvh", "--sizes", "1000,4000", "--json", str(out)],
+                               "--rows", row, "--sizes", "1000,4000", "--json", str(out)],
                               capture_output=True, text=True, timeout=240)
         check(proc.returncode == 0, f"memory_models.py failed: {proc.stderr.strip()}")
         runs = json.loads(out.read_text())["runs"]
         renderers = {r["renderer"] for r in runs}
-        check(renderers == {"cpu", "gpu"}, f"kk-bvh measured on {renderers}")
+        check(renderers == {"cpu", "gpu"}, f"{row} measured on {renderers}")
         check(all(r["peak_bytes"] > 10 * 2**20 and r["triangles"] >= 1000 for r in runs), f"runs: {runs}")
-        check("kk-bvh: .memory = {{" in proc.stdout, f"no registry values printed:\n{proc.stdout}")
+        check(f"{row}: .memory = {{{{" in proc.stdout, f"no registry values printed:\n{proc.stdout}")
         refused = subprocess.run([sys.executable, str(SCRIPTS / "memory_models.py"), "--binary", args.binary,
                                   "--rows", "no-such-row"], capture_output=True, text=True, timeout=60)
         check(refused.returncode != 0 and "no-such-row" in refused.stderr, "an unknown row was not refused")
