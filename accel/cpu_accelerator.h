@@ -97,6 +97,15 @@ public:
   // ray; stats are added to.
   virtual int packetSize() const { return 0; }
   virtual void tracePacket(const RayPacket&, bool /*anyHit*/, std::span<Hit>, std::span<RayStats>) const {}
+  // Several packets of the same kind at once (the renderer hands over a work
+  // item's tiles together), so a tracer may interleave them; the default
+  // traces them one after another.
+  virtual void tracePackets(std::span<const PacketJob> jobs, bool anyHit) const {
+    for (const PacketJob& job : jobs) {
+      const size_t n = size_t(job.rays->count);
+      tracePacket(*job.rays, anyHit, std::span<Hit>(job.hits, n), std::span<RayStats>(job.stats, n));
+    }
+  }
   virtual std::string name() const = 0;
   virtual AccelStats stats() const = 0;
 };

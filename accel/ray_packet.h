@@ -10,6 +10,7 @@
 #include <span>
 
 #include "accel/geometry/geometry.h"
+#include "accel/traversal_stats.h"
 
 namespace passtrace {
 
@@ -36,6 +37,14 @@ struct RayPacket {
     for (const Ray& r : rays.first(std::min(rays.size(), size_t(kMax)))) packet.push(r);
     return packet;
   }
+};
+
+// One packet of several handed to a tracer at once: its rays, and where its
+// hits and stats go (one entry per ray; stats are added to).
+struct PacketJob {
+  const RayPacket* rays;
+  Hit* hits;
+  RayStats* stats;
 };
 
 }  // namespace passtrace

@@ -15,6 +15,11 @@
 namespace passtrace {
 namespace {
 
+// Tiles whose packets go to the tracer together (CpuAccelerator::tracePackets),
+// so that it may interleave them: one packet's cache misses then overlap the
+// others' work (bvh8-packet at 5 M triangles: docs/bench-speed/NOTES.md).
+constexpr size_t kTileGroup = 8;
+
 // Adds pixels' step and triangle-test sums to a frame's, and takes the larger maxima.
 void addPixelCounts(FrameStats& into, const FrameStats& counts) {
   into.steps += counts.steps;
@@ -106,68 +111,84 @@ uint64_t CpuRenderer::tracePackets(std::vector<PathState>& paths, std::vector<Hi
   const size_t kTileH = primary ? 4 : 8;  // 8x8 primary tiles measured up to 1.2x slower (noisy; not kept)
   const size_t tilesX = (size_t(width) + kTileW - 1) / kTileW, tilesY = (size_t(height) + kTileH - 1) / kTileH;
   std::atomic<uint64_t> active{0};
-  parallelFor(tilesX * tilesY, 256 / kTile, threads_, [&](size_t begin, size_t end) {
+  parallelFor(tilesX * tilesY, kTileGroup, threads_, [&](size_t begin, size_t end) {
     uint64_t count = 0;
-    Hit tileHits[kTile];
-    RayPacket packets[2];  // the tile's closest-hit (primary) and shadow rays
-    Hit packetHits[kTile];
-    RayStats packetStats[kTile];
-    for (size_t tile = begin; tile < end; ++tile) {
-      size_t pixel[kTile];       // the tile's pixels, row by row
-      uint8_t members[2][kTile];  // each packet's pixels
-      size_t n = 0;
-      packets[0].count = packets[1].count = 0;
-      const size_t x0 = (tile % tilesX) * kTileW, y0 = (tile / tilesX) * kTileH;
-      float screenX[kTileW] = {}, dirX[kTileW], dirY[kTileW], dirZ[kTileW];
-      if (primary)
-        for (size_t x = x0; x < std::min(x0 + kTileW, size_t(width)); ++x)
-          screenX[x - x0] = cameraScreenX(*g.basis, int(x));
-      for (size_t y = y0; y < std::min(y0 + kTileH, size_t(height)); ++y) {
-        if (primary) cameraDirections(*g.basis, screenX, cameraScreenY(*g.basis, int(y)), dirX, dirY, dirZ);
-        for (size_t x = x0; x < std::min(x0 + kTileW, size_t(width)); ++x) {
-          const size_t j = n++;
-          pixel[j] = y * size_t(width) + x;
-          PathState& path = paths[pixel[j]];
-          if (primary) {  // field by field: a whole-Ray copy reloads it across its partial stores
-            path.ray.origin = g.basis->eye;
-            path.ray.direction = glm::vec3(dirX[x - x0], dirY[x - x0], dirZ[x - x0]);
-            path.ray.tMax = kInfinity;
+    // Per tile of the group: its hits, its pixels row by row, its closest-hit
+    // (primary) and shadow packets and each packet's pixels, hits and counts.
+    Hit tileHits[kTileGroup][kTile];
+    size_t pixel[kTileGroup][kTile];
+    size_t pixels[kTileGroup];
+    RayPacket packets[2][kTileGroup];
+    uint8_t members[2][kTileGroup][kTile];
+    Hit packetHits[2][kTileGroup][kTile];
+    RayStats packetStats[2][kTileGroup][kTile];
+    PacketJob jobs[2][kTileGroup];
+    for (size_t first = begin; first < end; first += kTileGroup) {
+      const size_t group = std::min(kTileGroup, end - first);
+      for (size_t t = 0; t < group; ++t) {
+        const size_t tile = first + t;
+        size_t n = 0;
+        packets[0][t].count = packets[1][t].count = 0;
+        const size_t x0 = (tile % tilesX) * kTileW, y0 = (tile / tilesX) * kTileH;
+        float screenX[kTileW] = {}, dirX[kTileW], dirY[kTileW], dirZ[kTileW];
+        if (primary)
+          for (size_t x = x0; x < std::min(x0 + kTileW, size_t(width)); ++x)
+            screenX[x - x0] = cameraScreenX(*g.basis, int(x));
+        for (size_t y = y0; y < std::min(y0 + kTileH, size_t(height)); ++y) {
+          if (primary) cameraDirections(*g.basis, screenX, cameraScreenY(*g.basis, int(y)), dirX, dirY, dirZ);
+          for (size_t x = x0; x < std::min(x0 + kTileW, size_t(width)); ++x) {
+            const size_t j = n++;
+            pixel[t][j] = y * size_t(width) + x;
+            PathState& path = paths[pixel[t][j]];
+            if (primary) {  // field by field: a whole-Ray copy reloads it across its partial stores
+              path.ray.origin = g.basis->eye;
+              path.ray.direction = glm::vec3(dirX[x - x0], dirY[x - x0], dirZ[x - x0]);
+              path.ray.tMax = kInfinity;
+            }
+            if (path.kind == RayKind::None) continue;
+            ++count;
+            const int shadow = path.kind == RayKind::Shadow;
+            if (!shadow && !primary) {
+              RayStats stats;
+              tileHits[t][j] = accelerator_.intersect(path.ray, false, &stats);
+              path.steps += stats.steps;
+              path.triangleTests += stats.triangleTests;
+              continue;
+            }
+            RayPacket& packet = packets[shadow][t];
+            members[shadow][t][packet.count] = uint8_t(j);
+            packet.push(path.ray);
           }
-          if (path.kind == RayKind::None) continue;
-          ++count;
-          const int shadow = path.kind == RayKind::Shadow;
-          if (!shadow && !primary) {
-            RayStats stats;
-            tileHits[j] = accelerator_.intersect(path.ray, false, &stats);
-            path.steps += stats.steps;
-            path.triangleTests += stats.triangleTests;
-            continue;
-          }
-          members[shadow][packets[shadow].count] = uint8_t(j);
-          packets[shadow].push(path.ray);
         }
+        pixels[t] = n;
       }
       for (int shadow = 0; shadow < 2; ++shadow) {
-        const RayPacket& packet = packets[shadow];
-        const size_t m = size_t(packet.count);
-        if (m == 0) continue;
-        std::fill_n(packetStats, m, RayStats{});
-        accelerator_.tracePacket(packet, shadow != 0, std::span<Hit>(packetHits, m),
-                                 std::span<RayStats>(packetStats, m));
-        for (size_t k = 0; k < m; ++k) {
-          PathState& path = paths[pixel[members[shadow][k]]];
-          tileHits[members[shadow][k]] = packetHits[k];
-          path.steps += packetStats[k].steps;
-          path.triangleTests += packetStats[k].triangleTests;
+        size_t jobCount = 0;
+        for (size_t t = 0; t < group; ++t) {
+          const size_t m = size_t(packets[shadow][t].count);
+          if (m == 0) continue;
+          std::fill_n(packetStats[shadow][t], m, RayStats{});
+          jobs[shadow][jobCount++] = PacketJob{&packets[shadow][t], packetHits[shadow][t], packetStats[shadow][t]};
         }
+        if (jobCount > 0) accelerator_.tracePackets(std::span<const PacketJob>(jobs[shadow], jobCount), shadow != 0);
+        for (size_t t = 0; t < group; ++t)
+          for (size_t k = 0; k < size_t(packets[shadow][t].count); ++k) {
+            const uint8_t j = members[shadow][t][k];
+            PathState& path = paths[pixel[t][j]];
+            tileHits[t][j] = packetHits[shadow][t][k];
+            path.steps += packetStats[shadow][t][k].steps;
+            path.triangleTests += packetStats[shadow][t][k].triangleTests;
+          }
       }
-      // Shaded while the tile's paths are still in the cache; the hit
-      // triangles' shading data is fetched for the whole tile first, so that
+      // Shaded while the tiles' paths are still in the cache; the hit
+      // triangles' shading data is fetched for a whole tile first, so that
       // its cache misses overlap instead of stalling one pixel at a time.
-      for (size_t j = 0; j < n; ++j) prefetchShading(tileHits[j]);
-      for (size_t j = 0; j < n; ++j) {
-        shade(g, pixel[j], tileHits[j], paths[pixel[j]]);
-        if (g.keepHits) hits[pixel[j]] = tileHits[j];
+      for (size_t t = 0; t < group; ++t) {
+        for (size_t j = 0; j < pixels[t]; ++j) prefetchShading(tileHits[t][j]);
+        for (size_t j = 0; j < pixels[t]; ++j) {
+          shade(g, pixel[t][j], tileHits[t][j], paths[pixel[t][j]]);
+          if (g.keepHits) hits[pixel[t][j]] = tileHits[t][j];
+        }
       }
     }
     active += count;
@@ -187,45 +208,59 @@ uint64_t CpuRenderer::tracePrimaryOnly(const CameraBasis& basis, int width, int 
   static_assert(kTile <= size_t(RayPacket::kMax), "a tile's rays are one packet");
   const size_t tilesX = (size_t(width) + kTileW - 1) / kTileW, tilesY = (size_t(height) + kTileH - 1) / kTileH;
   std::mutex statsLock;
-  parallelFor(tilesX * tilesY, 256 / kTile, threads_, [&](size_t begin, size_t end) {
+  parallelFor(tilesX * tilesY, kTileGroup, threads_, [&](size_t begin, size_t end) {
     FrameStats counts;  // this work item's share of the frame's sums and maxima
-    RayPacket packet;
-    Hit packetHits[kTile];
-    RayStats packetStats[kTile];
-    for (size_t tile = begin; tile < end; ++tile) {
-      const size_t x0 = (tile % tilesX) * kTileW, y0 = (tile / tilesX) * kTileH;
-      const size_t columns = std::min(kTileW, size_t(width) - x0), rows = std::min(kTileH, size_t(height) - y0);
-      float screenX[kTileW] = {}, dirX[kTileW], dirY[kTileW], dirZ[kTileW];
-      for (size_t x = 0; x < columns; ++x) screenX[x] = cameraScreenX(basis, int(x0 + x));
-      packet.count = int(rows * columns);
-      for (size_t y = 0; y < rows; ++y) {  // packet lanes row by row, as tracePackets orders them
-        cameraDirections(basis, screenX, cameraScreenY(basis, int(y0 + y)), dirX, dirY, dirZ);
-        std::fill_n(packet.ox + y * columns, columns, basis.eye.x);
-        std::fill_n(packet.oy + y * columns, columns, basis.eye.y);
-        std::fill_n(packet.oz + y * columns, columns, basis.eye.z);
-        std::copy_n(dirX, columns, packet.dx + y * columns);
-        std::copy_n(dirY, columns, packet.dy + y * columns);
-        std::copy_n(dirZ, columns, packet.dz + y * columns);
-        std::fill_n(packet.tMax + y * columns, columns, kInfinity);
-      }
-      const size_t n = size_t(packet.count);
-      std::fill_n(packetStats, n, RayStats{});
-      accelerator_.tracePacket(packet, false, std::span<Hit>(packetHits, n), std::span<RayStats>(packetStats, n));
-      for (size_t k = 0; k < n; ++k) prefetchShading(packetHits[k]);  // their misses overlap
-      for (size_t y = 0, k = 0; y < rows; ++y)
-        for (size_t x = 0; x < columns; ++x, ++k) {
-          const size_t pixel = (y0 + y) * size_t(width) + x0 + x;
-          const glm::vec3 color = shadePrimaryOnly(scene_, epsilon_, packet.ray(int(k)), packetHits[k], table_);
-          float* rgb = pixels.rgb.data() + 3 * pixel;  // not copy_n: that called memmove per pixel
-          rgb[0] = color.r, rgb[1] = color.g, rgb[2] = color.b;
-          const RayStats& stats = packetStats[k];
-          pixels.steps[pixel] = float(stats.steps);
-          counts.steps += stats.steps;
-          counts.triangleTests += stats.triangleTests;
-          counts.maxStepsPerRay = std::max<uint64_t>(counts.maxStepsPerRay, stats.steps);
-          counts.maxTriangleTestsPerRay = std::max<uint64_t>(counts.maxTriangleTestsPerRay, stats.triangleTests);
-          if (hits) (*hits)[pixel] = packetHits[k];
+    RayPacket packets[kTileGroup];
+    Hit packetHits[kTileGroup][kTile];
+    RayStats packetStats[kTileGroup][kTile];
+    PacketJob jobs[kTileGroup];
+    for (size_t first = begin; first < end; first += kTileGroup) {
+      const size_t group = std::min(kTileGroup, end - first);
+      for (size_t g = 0; g < group; ++g) {
+        const size_t tile = first + g;
+        RayPacket& packet = packets[g];
+        const size_t x0 = (tile % tilesX) * kTileW, y0 = (tile / tilesX) * kTileH;
+        const size_t columns = std::min(kTileW, size_t(width) - x0), rows = std::min(kTileH, size_t(height) - y0);
+        float screenX[kTileW] = {}, dirX[kTileW], dirY[kTileW], dirZ[kTileW];
+        for (size_t x = 0; x < columns; ++x) screenX[x] = cameraScreenX(basis, int(x0 + x));
+        packet.count = int(rows * columns);
+        for (size_t y = 0; y < rows; ++y) {  // packet lanes row by row, as tracePackets orders them
+          cameraDirections(basis, screenX, cameraScreenY(basis, int(y0 + y)), dirX, dirY, dirZ);
+          std::fill_n(packet.ox + y * columns, columns, basis.eye.x);
+          std::fill_n(packet.oy + y * columns, columns, basis.eye.y);
+          std::fill_n(packet.oz + y * columns, columns, basis.eye.z);
+          std::copy_n(dirX, columns, packet.dx + y * columns);
+          std::copy_n(dirY, columns, packet.dy + y * columns);
+          std::copy_n(dirZ, columns, packet.dz + y * columns);
+          std::fill_n(packet.tMax + y * columns, columns, kInfinity);
         }
+        std::fill_n(packetStats[g], size_t(packet.count), RayStats{});
+        jobs[g] = PacketJob{&packet, packetHits[g], packetStats[g]};
+      }
+      accelerator_.tracePackets(std::span<const PacketJob>(jobs, group), false);
+      for (size_t g = 0; g < group; ++g) {
+        const size_t tile = first + g;
+        const RayPacket& packet = packets[g];
+        const size_t x0 = (tile % tilesX) * kTileW, y0 = (tile / tilesX) * kTileH;
+        const size_t columns = std::min(kTileW, size_t(width) - x0), rows = std::min(kTileH, size_t(height) - y0);
+        const size_t n = size_t(packet.count);
+        for (size_t k = 0; k < n; ++k) prefetchShading(packetHits[g][k]);  // their misses overlap
+        for (size_t y = 0, k = 0; y < rows; ++y)
+          for (size_t x = 0; x < columns; ++x, ++k) {
+            const size_t pixel = (y0 + y) * size_t(width) + x0 + x;
+            const Hit& hit = packetHits[g][k];
+            const glm::vec3 color = shadePrimaryOnly(scene_, epsilon_, packet.ray(int(k)), hit, table_);
+            float* rgb = pixels.rgb.data() + 3 * pixel;  // not copy_n: that called memmove per pixel
+            rgb[0] = color.r, rgb[1] = color.g, rgb[2] = color.b;
+            const RayStats& stats = packetStats[g][k];
+            pixels.steps[pixel] = float(stats.steps);
+            counts.steps += stats.steps;
+            counts.triangleTests += stats.triangleTests;
+            counts.maxStepsPerRay = std::max<uint64_t>(counts.maxStepsPerRay, stats.steps);
+            counts.maxTriangleTestsPerRay = std::max<uint64_t>(counts.maxTriangleTestsPerRay, stats.triangleTests);
+            if (hits) (*hits)[pixel] = hit;
+          }
+      }
     }
     const std::lock_guard<std::mutex> hold(statsLock);
     addPixelCounts(pixels.stats, counts);

@@ -52,6 +52,9 @@ public:
                    std::span<RayStats> stats) const override {
     traceWideBvhPacketAvx2(bvh_, rays, anyHit, hits, stats, packetConfigFor(anyHit));
   }
+  void tracePackets(std::span<const PacketJob> jobs, bool anyHit) const override {
+    traceWideBvhPacketsAvx2(bvh_, jobs, anyHit, packetConfigFor(anyHit));
+  }
   std::string name() const override { return stats_.name; }
   AccelStats stats() const override { return stats_; }
 

@@ -69,5 +69,10 @@ inline constexpr PacketConfig packetConfigFor(bool anyHit) { return anyHit ? kAn
 // have one entry per ray (stats are added to). AVX2 only, as above.
 void traceWideBvhPacketAvx2(const WideBvh& bvh, const RayPacket& rays, bool anyHit, std::span<Hit> hits,
                             std::span<RayStats> stats, const PacketConfig& config = {});
+// Several packets at once, a few walking at a time and taking turns, a node
+// or leaf each, so that one's cache misses overlap the others' work; each
+// packet's hits and counts the same as traced alone (traceWideBvhPacketAvx2).
+void traceWideBvhPacketsAvx2(const WideBvh& bvh, std::span<const PacketJob> jobs, bool anyHit,
+                             const PacketConfig& config = {});
 
 }  // namespace passtrace

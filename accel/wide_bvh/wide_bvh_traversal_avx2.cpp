@@ -328,7 +328,7 @@ WIDE_TARGET WIDE_INLINE uint32_t leafAcrossRays(const WideBvh& bvh, uint32_t fir
 // its single-ray traversal would at the nodes it visits, so its hit is the
 // same up to ties in t (the visiting order is the packet's). With
 // PacketConfig::singleRayAt, the last few rays at a node finish its subtree
-// alone (traverseSubtree): the same tests again, in single-ray order. With
+// alone (SingleWalk, taking turns): the same tests again, in single-ray order. With
 // PacketConfig::acrossRaysAt, groups of eight test leaves across their rays
 // (leafAcrossRays): the same arithmetic, one triangle at a time. With
 // PacketConfig::nodesAcrossAt (any-hit packets), groups of eight in one octant
@@ -341,42 +341,148 @@ struct PacketEntry {
   Mask rays;    // bit r: ray r hit this child's box
 };
 
-template <typename Mask, bool kAnyHit>
-WIDE_TARGET void tracePacket(const WideBvh& bvh, const RayPacket& rays, const PacketConfig& config, Hit* best,
-                             RayStats* stats) {
-  constexpr bool kWide = sizeof(Mask) == 8;
-  using Entry = PacketEntry<Mask>;
-  const int count = rays.count;
-  RayPre pre[kWidePacketMax];
-  alignas(32) uint32_t steps[kWidePacketMax] = {};
-  alignas(32) uint32_t tests[kWidePacketMax] = {};
-  // best[r].t kept dense as well: which rays an entry still matters to is then
-  // one vector compare per eight rays instead of a loop over the rays.
-  alignas(32) float tBest[kWidePacketMax];
-  alignas(32) float inv[3][kWidePacketMax];
-  uint32_t oneOctant = 0;  // groups of eight whose rays share an octant
-  const auto parallelRays = Mask(preparePacket<kAnyHit>(rays, pre, tBest, inv, oneOctant));
-  // The rays nodeAcrossRays may take: those of one-octant groups without an axis-parallel slab.
-  Mask acrossCandidates = 0;
-  if (kAnyHit && config.nodesAcrossAt > 0)
-    for (int g = 0; 8 * g < count; ++g)
-      if (oneOctant >> g & 1u) acrossCandidates |= Mask(0xFF) << (8 * g);
-  acrossCandidates &= ~parallelRays;
-  for (int r = 0; r < count; ++r) best[r] = Hit{tBest[r]};
-  if (bvh.nodes.empty()) return;
-  Entry local[256];
-  std::vector<Entry> heap;
-  Entry* stack = local;
-  if (bvh.stackSize() > 256) {
-    heap.resize(bvh.stackSize());
-    stack = heap.data();
+// The lines a visit of `ref` will read: an inner node's, or a leaf's packs.
+WIDE_TARGET WIDE_INLINE void prefetchVisit(const WideBvh& bvh, uint32_t ref) {
+  const char* begin;
+  size_t bytes;
+  if (wideIsLeaf(ref)) {
+    begin = reinterpret_cast<const char*>(&bvh.packs[wideLeafFirst(ref)]);
+    bytes = wideLeafPacks(ref) * sizeof(TrianglePack);
+  } else {
+    begin = reinterpret_cast<const char*>(&bvh.nodes[ref]);
+    bytes = sizeof(WideBvhNode);
   }
-  // Rays still looking (shadow rays stop at their first hit).
-  Mask alive = count >= int(8 * sizeof(Mask)) ? ~Mask(0) : (Mask(1) << count) - 1u;
-  int top = 0;
-  stack[top++] = Entry{0u, -kInfinity, alive};
-  while (top > 0) {
-    const PacketEntry entry = stack[--top];
+  const uintptr_t first = reinterpret_cast<uintptr_t>(begin) & ~uintptr_t(63);
+  for (uintptr_t line = first; line < reinterpret_cast<uintptr_t>(begin) + bytes; line += 64)
+    _mm_prefetch(reinterpret_cast<const char*>(line), _MM_HINT_T0);
+}
+
+// One ray's walk of a subtree, a visit at a time: traverseSubtree's tests in
+// its order, so the same hit and counts.
+struct SingleWalk {
+  int ray;
+  StackEntry entry;  // visited next
+  StackEntry* stack;
+  int top;
+};
+
+// Visits w.entry; false when the walk is over.
+template <bool kAnyHit>
+WIDE_TARGET WIDE_INLINE bool singleStep(const WideBvh& bvh, const RayPre& pre, Hit& best, uint32_t& steps,
+                                        uint32_t& tests, SingleWalk& w) {
+  if (!wideIsLeaf(w.entry.ref)) {
+    ++steps;
+    const WideBvhNode& node = bvh.nodes[w.entry.ref];
+    float tNear[8];
+    uint32_t mask = boxTest8(node, pre, best.t, tNear);
+    StackEntry hits[8];
+    int count = 0;
+    while (mask) {  // sorted by entry distance as traverseSubtree sorts them
+      const int lane = __builtin_ctz(mask);
+      mask &= mask - 1;
+      StackEntry e{node.child[lane], tNear[lane]};
+      int j = count++;
+      while (!kAnyHit && j > 0 && hits[j - 1].tNear > e.tNear) {
+        hits[j] = hits[j - 1];
+        --j;
+      }
+      hits[j] = e;
+    }
+    if (count > 0) {
+      for (int i = count; i-- > 1;) w.stack[w.top++] = hits[i];
+      w.entry = hits[0];
+      return true;
+    }
+  } else {
+    const uint32_t first = wideLeafFirst(w.entry.ref), packs = wideLeafPacks(w.entry.ref);
+    for (uint32_t p = first; p < first + packs; ++p) {
+      const TrianglePack& pack = bvh.packs[p];
+      float t[4], u[4], v[4];
+      uint32_t mask = packTest4(pack, pre, best.t, t, u, v);
+      for (int l = 0; l < kTrianglePackWidth; ++l) tests += pack.id[l] != kNoHit;
+      while (mask) {
+        const int lane = __builtin_ctz(mask);
+        mask &= mask - 1;
+        if (t[lane] < best.t) best = Hit{t[lane], u[lane], v[lane], pack.id[lane]};
+      }
+      if (kAnyHit && best.found()) return false;
+    }
+  }
+  while (w.top > 0) {  // entries a nearer hit found since they were pushed are skipped
+    w.entry = w.stack[--w.top];
+    if (w.entry.tNear < best.t) return true;
+  }
+  return false;
+}
+
+// One packet's walk, a visit at a time (step), so that several packets can
+// take turns: while one visits a node, the lines of the others' next visits
+// arrive (tracePackets).
+template <typename Mask, bool kAnyHit>
+class PacketWalk {
+public:
+  using Entry = PacketEntry<Mask>;
+  static constexpr bool kWide = sizeof(Mask) == 8;
+
+  WIDE_TARGET void start(const WideBvh& bvh, const PacketJob& job, const PacketConfig& config) {
+    bvh_ = &bvh, rays_ = job.rays, config_ = &config, best_ = job.hits, stats_ = job.stats;
+    const int count = rays_->count;
+    std::fill_n(steps_, kWidePacketMax, 0u);
+    std::fill_n(tests_, kWidePacketMax, 0u);
+    uint32_t oneOctant = 0;  // groups of eight whose rays share an octant
+    const auto parallelRays = Mask(preparePacket<kAnyHit>(*rays_, pre_, tBest_, inv_, oneOctant));
+    // The rays nodeAcrossRays may take: those of one-octant groups without an axis-parallel slab.
+    acrossCandidates_ = 0;
+    if (kAnyHit && config.nodesAcrossAt > 0)
+      for (int g = 0; 8 * g < count; ++g)
+        if (oneOctant >> g & 1u) acrossCandidates_ |= Mask(0xFF) << (8 * g);
+    acrossCandidates_ &= ~parallelRays;
+    for (int r = 0; r < count; ++r) best_[r] = Hit{tBest_[r]};
+    top_ = 0;
+    if (bvh.nodes.empty()) return;
+    stack_ = local_;
+    if (bvh.stackSize() > std::size(local_)) {
+      heap_.resize(bvh.stackSize());
+      stack_ = heap_.data();
+    }
+    // Rays still looking (shadow rays stop at their first hit).
+    alive_ = count >= int(8 * sizeof(Mask)) ? ~Mask(0) : (Mask(1) << count) - 1u;
+    stack_[top_++] = Entry{0u, -kInfinity, alive_};
+    singles_ = 0;
+    if (singleStacks_.size() < size_t(config.singleRayAt) * bvh.stackSize())
+      singleStacks_.resize(size_t(config.singleRayAt) * bvh.stackSize());
+  }
+  bool done() const { return top_ == 0 && singles_ == 0; }
+  // The node or leaf step() visits next (not done()).
+  uint32_t next() const { return singles_ > 0 ? single_[turn_].entry.ref : stack_[top_ - 1].ref; }
+  // Adds the rays' counts to their stats.
+  void finish() const {
+    for (int r = 0; r < rays_->count; ++r) {
+      stats_[r].steps += steps_[r] + tests_[r];
+      stats_[r].triangleTests += tests_[r];
+    }
+  }
+
+  // Pops the stack's top entry and visits it with the rays it still matters
+  // to, or while rays walk a subtree alone, visits the next one's entry.
+  WIDE_TARGET void step() {
+    if (singles_ > 0) {
+      stepSingles();
+      return;
+    }
+    const WideBvh& bvh = *bvh_;
+    const RayPacket& rays = *rays_;
+    const PacketConfig& config = *config_;
+    Hit* best = best_;
+    RayPre* pre = pre_;
+    float* tBest = tBest_;
+    uint32_t *steps = steps_, *tests = tests_;
+    Entry* stack = stack_;
+    int& top = top_;
+    Mask& alive = alive_;
+    const Mask acrossCandidates = acrossCandidates_;
+    const float(&inv)[3][kWidePacketMax] = inv_;
+    const Entry entry = stack[--top];
     // Rays with a hit nearer than the entry distance of every ray here skip
     // it: compared eight at a time, only in the groups of eight that hold
     // some of the entry's rays (deep in the tree an AO packet's entries hold few).
@@ -396,19 +502,19 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const RayPacket& rays, const Pa
       }
       live &= nearer;
     }
-    if (!live) continue;
+    if (!live) return;
     if (!wideIsLeaf(entry.ref) && __builtin_popcountll(live) <= config.singleRayAt) {
       // Their other entries stay on the packet's stack: a subtree is walked once per ray either way.
+      // The rays walk it taking turns (stepSingles), the packet's stack waiting until all are done.
       for (Mask m = live; m;) {
         const int r = __builtin_ctzll(m);
         m &= m - 1;
-        traverseSubtree(bvh, {}, rays.ray(r), pre[r], entry.ref, kAnyHit, TriangleTest::MollerTrumbore, best[r],
-                        steps[r], tests[r]);
-        tBest[r] = best[r].t;
-        if (kAnyHit && best[r].found()) alive &= ~(Mask(1) << r);
+        single_[singles_] = SingleWalk{r, StackEntry{entry.ref, -kInfinity},
+                                       singleStacks_.data() + size_t(singles_) * bvh.stackSize(), 0};
+        ++singles_;
       }
-      if (!alive) break;
-      continue;
+      turn_ = 0;
+      return;
     }
     if (!wideIsLeaf(entry.ref)) {
       const WideBvhNode& node = bvh.nodes[entry.ref];
@@ -475,7 +581,7 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const RayPacket& rays, const Pa
         hits[j] = e;
       }
       for (int i = n; i-- > 0;) stack[top++] = hits[i];
-      continue;
+      return;
     }
     const uint32_t first = wideLeafFirst(entry.ref), packs = wideLeafPacks(entry.ref);
     uint32_t real[4];  // each pack's real triangles (wideLeafPacks <= 4), counted once for all the rays
@@ -517,11 +623,85 @@ WIDE_TARGET void tracePacket(const WideBvh& bvh, const RayPacket& rays, const Pa
         }
       }
     }
-    if (!alive) break;
+    if (!alive) top = 0;  // every ray has stopped
   }
-  for (int r = 0; r < count; ++r) {
-    stats[r].steps += steps[r] + tests[r];
-    stats[r].triangleTests += tests[r];
+
+private:
+  WIDE_TARGET void stepSingles() {
+    SingleWalk& w = single_[turn_];
+    const int r = w.ray;
+    if (singleStep<kAnyHit>(*bvh_, pre_[r], best_[r], steps_[r], tests_[r], w)) {
+      prefetchVisit(*bvh_, w.entry.ref);
+      turn_ = turn_ + 1 < singles_ ? turn_ + 1 : 0;
+      return;
+    }
+    tBest_[r] = best_[r].t;
+    if (kAnyHit && best_[r].found()) alive_ &= ~(Mask(1) << r);
+    w = single_[--singles_];  // the last walk moves here with its stack (none starts before all end)
+    if (turn_ >= singles_) turn_ = 0;
+    if (singles_ == 0 && !alive_) top_ = 0;  // every ray has stopped
+  }
+
+
+  const WideBvh* bvh_ = nullptr;
+  const RayPacket* rays_ = nullptr;
+  const PacketConfig* config_ = nullptr;
+  Hit* best_ = nullptr;
+  RayStats* stats_ = nullptr;
+  RayPre pre_[kWidePacketMax];
+  alignas(32) uint32_t steps_[kWidePacketMax];
+  alignas(32) uint32_t tests_[kWidePacketMax];
+  // best[r].t kept dense as well: which rays an entry still matters to is then
+  // one vector compare per eight rays instead of a loop over the rays.
+  alignas(32) float tBest_[kWidePacketMax];
+  alignas(32) float inv_[3][kWidePacketMax];
+  Mask acrossCandidates_ = 0, alive_ = 0;
+  Entry local_[256];
+  std::vector<Entry> heap_;
+  Entry* stack_ = local_;
+  int top_ = 0;
+  // Rays walking a subtree alone (PacketConfig::singleRayAt), each with its stack.
+  SingleWalk single_[kWidePacketMax];
+  std::vector<StackEntry> singleStacks_;
+  int singles_ = 0, turn_ = 0;
+};
+
+// Packets take turns a visit at a time, kPacketsInFlight of them at once:
+// after a packet's visit the lines of its next one are prefetched, and they
+// arrive while the other packets visit theirs. A walk that is done hands its
+// slot to the next packet. At 5 M triangles a packet alone waits on its
+// misses one at a time (the tree is 0.8 GB; a miss costs about what a visit
+// does); four in turn keep the core's miss buffers full: the prefetch itself
+// is where they then stall (perf), so more in flight do not help. Frame time
+// at 5 M spheres (-b 1, 512², Embree -r 3 over ours, median of three rounds):
+// 2 in flight 1.09, 4 1.16, 8 1.08 (docs/bench-speed/NOTES.md).
+constexpr int kPacketsInFlight = 4;
+template <typename Mask, bool kAnyHit>
+WIDE_TARGET void tracePackets(const WideBvh& bvh, std::span<const PacketJob> jobs, const PacketConfig& config) {
+  PacketWalk<Mask, kAnyHit> walks[kPacketsInFlight];
+  int slot[kPacketsInFlight], busy = 0;  // the walks under way
+  size_t nextJob = 0;
+  for (; busy < kPacketsInFlight && nextJob < jobs.size(); ++busy) {
+    slot[busy] = busy;
+    walks[busy].start(bvh, jobs[nextJob++], config);
+  }
+  while (busy > 0) {
+    for (int i = 0; i < busy;) {
+      PacketWalk<Mask, kAnyHit>& walk = walks[slot[i]];
+      if (!walk.done()) walk.step();
+      if (!walk.done()) {
+        prefetchVisit(bvh, walk.next());
+        ++i;
+        continue;
+      }
+      walk.finish();
+      if (nextJob < jobs.size()) {
+        walk.start(bvh, jobs[nextJob++], config);
+        ++i;
+      } else {
+        slot[i] = slot[--busy];
+      }
+    }
   }
 }
 
@@ -532,12 +712,19 @@ Hit traverseWideBvhAvx2(const WideBvh& bvh, std::span<const Triangle> tris, cons
   return traverse(bvh, tris, ray, anyHit, test, stats);
 }
 
+void traceWideBvhPacketsAvx2(const WideBvh& bvh, std::span<const PacketJob> jobs, bool anyHit,
+                             const PacketConfig& config) {
+  const bool wide = std::any_of(jobs.begin(), jobs.end(), [](const PacketJob& job) { return job.rays->count > 32; });
+  if (wide)
+    (anyHit ? tracePackets<uint64_t, true> : tracePackets<uint64_t, false>)(bvh, jobs, config);
+  else
+    (anyHit ? tracePackets<uint32_t, true> : tracePackets<uint32_t, false>)(bvh, jobs, config);
+}
+
 void traceWideBvhPacketAvx2(const WideBvh& bvh, const RayPacket& rays, bool anyHit, std::span<Hit> hits,
                             std::span<RayStats> stats, const PacketConfig& config) {
-  if (rays.count > 32)
-    (anyHit ? tracePacket<uint64_t, true> : tracePacket<uint64_t, false>)(bvh, rays, config, hits.data(), stats.data());
-  else
-    (anyHit ? tracePacket<uint32_t, true> : tracePacket<uint32_t, false>)(bvh, rays, config, hits.data(), stats.data());
+  const PacketJob job{&rays, hits.data(), stats.data()};
+  traceWideBvhPacketsAvx2(bvh, std::span<const PacketJob>(&job, 1), anyHit, config);
 }
 
 bool wideBvhAvx2Available() {
@@ -558,6 +745,7 @@ Hit traverseWideBvhAvx2(const WideBvh& bvh, std::span<const Triangle> tris, cons
 
 void traceWideBvhPacketAvx2(const WideBvh&, const RayPacket&, bool, std::span<Hit>, std::span<RayStats>,
                             const PacketConfig&) {}
+void traceWideBvhPacketsAvx2(const WideBvh&, std::span<const PacketJob>, bool, const PacketConfig&) {}
 
 bool wideBvhAvx2Available() { return false; }
 

@@ -34,22 +34,48 @@ namespace {
 
 using namespace passtrace;
 
-// One way of tracing a packet's rays into hits.
+// One way of tracing a set's packets: returns the rays found hit or blocked.
 struct Path {
   std::string name;
-  std::function<void(const RayPacket&, bool anyHit, std::span<Hit>)> trace;
+  std::function<size_t(const PacketSet&)> trace;
 };
 
-Path packets(std::string name, const CpuAccelerator& accel) {
-  return {std::move(name), [&accel](const RayPacket& packet, bool anyHit, std::span<Hit> hits) {
-            RayStats stats[RayPacket::kMax];
-            accel.tracePacket(packet, anyHit, hits, std::span<RayStats>(stats, hits.size()));
+size_t countFound(std::span<const Hit> hits) {
+  return size_t(std::count_if(hits.begin(), hits.end(), [](const Hit& h) { return h.found(); }));
+}
+
+// Packets handed over `group` at a time (tracePackets), as the renderer hands
+// over a work item's tiles; 1: one packet at a time (tracePacket).
+Path packets(std::string name, const CpuAccelerator& accel, size_t group) {
+  return {std::move(name), [&accel, group](const PacketSet& set) {
+            std::vector<Hit> hits(group * RayPacket::kMax);
+            std::vector<RayStats> stats(hits.size());
+            std::vector<PacketJob> jobs(group);
+            size_t found = 0;
+            for (size_t first = 0; first < set.packets.size(); first += group) {
+              const size_t n = std::min(group, set.packets.size() - first);
+              for (size_t k = 0; k < n; ++k)
+                jobs[k] = {&set.packets[first + k], hits.data() + k * RayPacket::kMax, stats.data() + k * RayPacket::kMax};
+              if (group == 1) {
+                const size_t m = size_t(set.packets[first].count);
+                accel.tracePacket(set.packets[first], set.anyHit, std::span<Hit>(hits.data(), m),
+                                  std::span<RayStats>(stats.data(), m));
+              } else {
+                accel.tracePackets(std::span<const PacketJob>(jobs.data(), n), set.anyHit);
+              }
+              for (size_t k = 0; k < n; ++k)
+                found += countFound(std::span<const Hit>(jobs[k].hits, size_t(jobs[k].rays->count)));
+            }
+            return found;
           }};
 }
 
 Path singleRays(std::string name, const CpuAccelerator& accel) {
-  return {std::move(name), [&accel](const RayPacket& packet, bool anyHit, std::span<Hit> hits) {
-            for (int k = 0; k < packet.count; ++k) hits[size_t(k)] = accel.intersect(packet.ray(k), anyHit, nullptr);
+  return {std::move(name), [&accel](const PacketSet& set) {
+            size_t found = 0;
+            for (const RayPacket& packet : set.packets)
+              for (int k = 0; k < packet.count; ++k) found += accel.intersect(packet.ray(k), set.anyHit, nullptr).found();
+            return found;
           }};
 }
 
@@ -66,33 +92,28 @@ int main(int argc, char** argv) try {
                    args->aoSamples);
   const std::unique_ptr<CpuAccelerator> packet = makeCpuStructure("bvh8-packet", scene.triangles);
   const std::unique_ptr<CpuAccelerator> single = makeCpuStructure("bvh8", scene.triangles);
-  std::vector<Path> paths = {packets("bvh8-packet", *packet), singleRays("bvh8", *single)};
+  std::vector<Path> paths = {packets("bvh8-packet", *packet, 1), singleRays("bvh8", *single),
+                            packets("bvh8-packet-x8", *packet, 8)};
   std::unique_ptr<CpuAccelerator> embree;
   try {
     embree = makeEmbreeAccelerator(scene.triangles);
     paths.push_back(singleRays("embree-1", *embree));
-    paths.push_back(packets("embree-packets", *embree));
+    paths.push_back(packets("embree-packets", *embree, 1));
   } catch (const std::runtime_error&) {  // a build without Embree: passtrace's paths only
   }
 
   for (const PacketSet& set : sets) {
     std::vector<double> best(paths.size(), std::numeric_limits<double>::infinity());
     std::vector<size_t> found(paths.size());
-    std::vector<Hit> hits(RayPacket::kMax);
     for (int r = 0; r < args->repeats; ++r)
       for (size_t p = 0; p < paths.size(); ++p) {
-        size_t count = 0;
         const auto start = std::chrono::steady_clock::now();
-        for (const RayPacket& rays : set.packets) {
-          const std::span<Hit> out(hits.data(), size_t(rays.count));
-          paths[p].trace(rays, set.anyHit, out);
-          for (const Hit& h : out) count += h.found();
-        }
+        const size_t count = paths[p].trace(set);
         best[p] = std::min(best[p], std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
         found[p] = count;
       }
     // passtrace's two paths run the same tests: they must agree, or the timing compares different work.
-    if (found[0] != found[1]) throw std::runtime_error(set.kind + ": bvh8-packet and bvh8 disagree on the hits");
+    if (found[0] != found[1] || found[0] != found[2]) throw std::runtime_error(set.kind + ": bvh8-packet, bvh8 and bvh8-packet-x8 disagree on the hits");
     std::printf("{\"scene\": \"%s\", \"kind\": \"%s\", \"rays\": %zu, \"packets\": %zu, \"ms\": {", args->scene.c_str(),
                 set.kind.c_str(), set.rays, set.packets.size());
     for (size_t p = 0; p < paths.size(); ++p) std::printf("%s\"%s\": %.2f", p ? ", " : "", paths[p].name.c_str(), best[p]);

@@ -267,6 +267,56 @@ TEST_P(WideBvhMeshTest, AcrossRaysFindAndCountWhatRaysAloneDo) {
 // bvh8-packet's batch entry point on an image-shaped batch (a partly inactive
 // 13x7 image: tiles cut at the edges) of camera rays, then of shadow rays to a
 // point mixed with reflection-like rays: brute force's nearest t and any-hit answer.
+// Packets traced together (traceWideBvhPacketsAvx2: they take turns a visit
+// at a time, more of them than walk at once, so slots are reused) against the
+// same packets traced one at a time: every hit and count the same, to the bit.
+// Packets of many sizes, some over 32 rays (then all walk with 64-bit masks).
+TEST_P(WideBvhMeshTest, PacketsTracedTogetherEqualOneAtATime) {
+  if (!wideBvhAvx2Available()) GTEST_SKIP() << "no AVX2";
+  const auto& tris = GetParam().tris;
+  const WideBvh bvh = collapseToWideBvh(buildBinnedSahBvh(tris), tris);
+  const std::vector<Ray> rays = testmesh::rayMix(testmesh::boundsOf(tris), 300, 29);
+  std::vector<RayPacket> packets;
+  const size_t sizes[] = {32, 7, 64, 1, 20, 32, 45, 3};
+  for (size_t begin = 0, k = 0; begin < rays.size(); ++k) {
+    const size_t count = std::min(sizes[k % std::size(sizes)], rays.size() - begin);
+    packets.push_back(RayPacket::of(std::span<const Ray>(rays.data() + begin, count)));
+    begin += count;
+  }
+  for (const PacketConfig config : {PacketConfig{0, 0}, PacketConfig{3, 1, 1}, PacketConfig{kWidePacketMax, 0},
+                                    kClosestHitPackets, kAnyHitPackets}) {
+    for (bool anyHit : {false, true}) {
+      for (size_t first : {size_t(0), size_t(2)}) {  // from packet 2 on: only packets of up to 32 rays at the end
+        const size_t n = first == 0 ? packets.size() : 5;
+        std::vector<Hit> together(n * kWidePacketMax), alone(n * kWidePacketMax);
+        std::vector<RayStats> togetherStats(together.size()), aloneStats(alone.size());
+        std::vector<PacketJob> jobs;
+        for (size_t k = 0; k < n; ++k) {
+          const RayPacket& packet = packets[first + k];
+          const size_t at = k * kWidePacketMax, m = size_t(packet.count);
+          jobs.push_back(PacketJob{&packet, together.data() + at, togetherStats.data() + at});
+          traceWideBvhPacketAvx2(bvh, packet, anyHit, std::span<Hit>(alone.data() + at, m),
+                                 std::span<RayStats>(aloneStats.data() + at, m), config);
+        }
+        traceWideBvhPacketsAvx2(bvh, jobs, anyHit, config);
+        for (size_t k = 0; k < n; ++k)
+          for (int r = 0; r < packets[first + k].count; ++r) {
+            const size_t i = k * kWidePacketMax + size_t(r);
+            const std::string where = "packet " + std::to_string(first + k) + " ray " + std::to_string(r) +
+                                      " singleRayAt " + std::to_string(config.singleRayAt) + " anyHit " +
+                                      std::to_string(anyHit);
+            EXPECT_EQ(together[i].t, alone[i].t) << where;
+            EXPECT_EQ(together[i].u, alone[i].u) << where;
+            EXPECT_EQ(together[i].v, alone[i].v) << where;
+            EXPECT_EQ(together[i].id, alone[i].id) << where;
+            EXPECT_EQ(togetherStats[i].steps, aloneStats[i].steps) << where;
+            EXPECT_EQ(togetherStats[i].triangleTests, aloneStats[i].triangleTests) << where;
+          }
+      }
+    }
+  }
+}
+
 TEST_P(WideBvhMeshTest, PacketBatchesEqualBruteForce) {
   const auto& tris = GetParam().tris;
   const std::unique_ptr<CpuAccelerator> accel = makeBvh8PacketCpu(tris, AccelBuildConfig{});
