@@ -97,9 +97,11 @@ public:
   // ray; stats are added to.
   virtual int packetSize() const { return 0; }
   virtual void tracePacket(const RayPacket&, bool /*anyHit*/, std::span<Hit>, std::span<RayStats>) const {}
-  // Several packets of the same kind at once (the renderer hands over a work
-  // item's tiles together), so a tracer may interleave them; the default
+  // Several packets of the same kind at once, so that a tracer may
+  // interleave them: the renderer hands over up to packetsAtOnce() tiles'
+  // packets together (1: one tile at a time, as tracePacket). The default
   // traces them one after another.
+  virtual int packetsAtOnce() const { return 1; }
   virtual void tracePackets(std::span<const PacketJob> jobs, bool anyHit) const {
     for (const PacketJob& job : jobs) {
       const size_t n = size_t(job.rays->count);

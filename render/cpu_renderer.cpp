@@ -15,9 +15,10 @@
 namespace passtrace {
 namespace {
 
-// Tiles whose packets go to the tracer together (CpuAccelerator::tracePackets),
-// so that it may interleave them: one packet's cache misses then overlap the
-// others' work (bvh8-packet at 5 M triangles: docs/bench-speed/NOTES.md).
+// The most tiles whose packets go to the tracer together
+// (CpuAccelerator::packetsAtOnce, tracePackets), so that it may interleave
+// them: one packet's cache misses then overlap the others' work (bvh8-packet
+// over large trees: docs/bench-speed/NOTES.md).
 constexpr size_t kTileGroup = 8;
 
 // Adds pixels' step and triangle-test sums to a frame's, and takes the larger maxima.
@@ -111,20 +112,27 @@ uint64_t CpuRenderer::tracePackets(std::vector<PathState>& paths, std::vector<Hi
   const size_t kTileH = primary ? 4 : 8;  // 8x8 primary tiles measured up to 1.2x slower (noisy; not kept)
   const size_t tilesX = (size_t(width) + kTileW - 1) / kTileW, tilesY = (size_t(height) + kTileH - 1) / kTileH;
   std::atomic<uint64_t> active{0};
-  parallelFor(tilesX * tilesY, kTileGroup, threads_, [&](size_t begin, size_t end) {
+  const size_t tileGroup = std::clamp<size_t>(size_t(accelerator_.packetsAtOnce()), 1, kTileGroup);
+  parallelFor(tilesX * tilesY, std::max<size_t>(tileGroup, 256 / kTile), threads_, [&](size_t begin, size_t end) {
     uint64_t count = 0;
     // Per tile of the group: its hits, its pixels row by row, its closest-hit
     // (primary) and shadow packets and each packet's pixels, hits and counts.
-    Hit tileHits[kTileGroup][kTile];
-    size_t pixel[kTileGroup][kTile];
-    size_t pixels[kTileGroup];
-    RayPacket packets[2][kTileGroup];
-    uint8_t members[2][kTileGroup][kTile];
-    Hit packetHits[2][kTileGroup][kTile];
-    RayStats packetStats[2][kTileGroup][kTile];
-    PacketJob jobs[2][kTileGroup];
-    for (size_t first = begin; first < end; first += kTileGroup) {
-      const size_t group = std::min(kTileGroup, end - first);
+    // The thread's own, made once: made per work item, their 70 KB cost 10 %
+    // of a bunny frame.
+    struct Scratch {
+      Hit tileHits[kTileGroup][kTile];
+      size_t pixel[kTileGroup][kTile];
+      size_t pixels[kTileGroup];
+      RayPacket packets[2][kTileGroup];
+      uint8_t members[2][kTileGroup][kTile];
+      Hit packetHits[2][kTileGroup][kTile];
+      RayStats packetStats[2][kTileGroup][kTile];
+      PacketJob jobs[2][kTileGroup];
+    };
+    thread_local Scratch scratch;
+    auto& [tileHits, pixel, pixels, packets, members, packetHits, packetStats, jobs] = scratch;
+    for (size_t first = begin; first < end; first += tileGroup) {
+      const size_t group = std::min(tileGroup, end - first);
       for (size_t t = 0; t < group; ++t) {
         const size_t tile = first + t;
         size_t n = 0;
@@ -208,14 +216,19 @@ uint64_t CpuRenderer::tracePrimaryOnly(const CameraBasis& basis, int width, int 
   static_assert(kTile <= size_t(RayPacket::kMax), "a tile's rays are one packet");
   const size_t tilesX = (size_t(width) + kTileW - 1) / kTileW, tilesY = (size_t(height) + kTileH - 1) / kTileH;
   std::mutex statsLock;
-  parallelFor(tilesX * tilesY, kTileGroup, threads_, [&](size_t begin, size_t end) {
+  const size_t tileGroup = std::clamp<size_t>(size_t(accelerator_.packetsAtOnce()), 1, kTileGroup);
+  parallelFor(tilesX * tilesY, std::max<size_t>(tileGroup, 256 / kTile), threads_, [&](size_t begin, size_t end) {
     FrameStats counts;  // this work item's share of the frame's sums and maxima
-    RayPacket packets[kTileGroup];
-    Hit packetHits[kTileGroup][kTile];
-    RayStats packetStats[kTileGroup][kTile];
-    PacketJob jobs[kTileGroup];
-    for (size_t first = begin; first < end; first += kTileGroup) {
-      const size_t group = std::min(kTileGroup, end - first);
+    struct Scratch {  // the thread's own, made once (as tracePackets')
+      RayPacket packets[kTileGroup];
+      Hit packetHits[kTileGroup][kTile];
+      RayStats packetStats[kTileGroup][kTile];
+      PacketJob jobs[kTileGroup];
+    };
+    thread_local Scratch scratch;
+    auto& [packets, packetHits, packetStats, jobs] = scratch;
+    for (size_t first = begin; first < end; first += tileGroup) {
+      const size_t group = std::min(tileGroup, end - first);
       for (size_t g = 0; g < group; ++g) {
         const size_t tile = first + g;
         RayPacket& packet = packets[g];

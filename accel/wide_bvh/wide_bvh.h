@@ -7,6 +7,7 @@
 // triangle test runs four lanes at once. Unused child lanes hold the box
 // [+inf, +inf], which every ray misses, so the traversal needs no lane count.
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -55,6 +56,7 @@ struct WideBvh {
   uint32_t references = 0;         // triangles stored (once per leaf; an SBVH's in several leaves)
   // Entries a traversal stack can need: up to 7 siblings per level.
   uint32_t stackSize() const { return 7 * depth + 8; }
+  size_t bytes() const { return nodes.size() * sizeof(WideBvhNode) + packs.size() * sizeof(TrianglePack); }
 };
 
 struct WideBvhConfig {

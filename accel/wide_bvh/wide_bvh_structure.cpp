@@ -40,6 +40,7 @@ public:
     traverse_ = wideBvhAvx2Available() ? traverseWideBvhAvx2 : traverseWideBvhScalar;
     // Packets need AVX2 and the Möller–Trumbore pack test; otherwise the renderer's per-ray loop.
     packets_ = packets && wideBvhAvx2Available() && test == TriangleTest::MollerTrumbore;
+    takeTurns_ = bvh_.bytes() > kTakeTurnsAboveBytes;
   }
   Hit intersect(const Ray& ray, bool anyHit, RayStats* stats) const override {
     return traverse_(bvh_, tris_, ray, anyHit, test_, stats);
@@ -52,8 +53,11 @@ public:
                    std::span<RayStats> stats) const override {
     traceWideBvhPacketAvx2(bvh_, rays, anyHit, hits, stats, packetConfigFor(anyHit));
   }
+  // Packets take turns over a tree that does not fit the caches (kTakeTurnsAboveBytes); eight at once
+  // keep four walking (kPacketsInFlight) as walks end.
+  int packetsAtOnce() const override { return takeTurns_ ? 8 : 1; }
   void tracePackets(std::span<const PacketJob> jobs, bool anyHit) const override {
-    traceWideBvhPacketsAvx2(bvh_, jobs, anyHit, packetConfigFor(anyHit));
+    traceWideBvhPacketsAvx2(bvh_, jobs, anyHit, packetConfigFor(anyHit), takeTurns_);
   }
   std::string name() const override { return stats_.name; }
   AccelStats stats() const override { return stats_; }
@@ -66,6 +70,7 @@ private:
   AccelStats stats_;
   Traverse traverse_ = nullptr;
   bool packets_ = false;
+  bool takeTurns_ = false;
 };
 
 // Packets of 32 neighbouring elements: 8x4 pixel tiles when the batch has an

@@ -69,10 +69,17 @@ inline constexpr PacketConfig packetConfigFor(bool anyHit) { return anyHit ? kAn
 // have one entry per ray (stats are added to). AVX2 only, as above.
 void traceWideBvhPacketAvx2(const WideBvh& bvh, const RayPacket& rays, bool anyHit, std::span<Hit> hits,
                             std::span<RayStats> stats, const PacketConfig& config = {});
-// Several packets at once, a few walking at a time and taking turns, a node
-// or leaf each, so that one's cache misses overlap the others' work; each
-// packet's hits and counts the same as traced alone (traceWideBvhPacketAvx2).
+// Several packets at once. With takeTurns a few walk at a time, taking turns
+// a node or leaf each, so that one's cache misses overlap the others' work;
+// otherwise one after another. Each packet's hits and counts are the same
+// either way (and as traceWideBvhPacketAvx2's).
 void traceWideBvhPacketsAvx2(const WideBvh& bvh, std::span<const PacketJob> jobs, bool anyHit,
-                             const PacketConfig& config = {});
+                             const PacketConfig& config, bool takeTurns);
+// bvh8-packet takes turns over trees larger than this. Turns pay where a walk
+// waits on memory: at 5 M and 20 M triangles (trees of 0.4 and 1.6 GB) frames
+// were 1.3x faster; on the bunny, Kitchen and Robots (trees of 4-8 MB, in this
+// machine's 32 MB L3) their upkeep made frames up to 1.17x slower
+// (docs/bench-speed/NOTES.md).
+inline constexpr size_t kTakeTurnsAboveBytes = size_t(16) << 20;
 
 }  // namespace passtrace

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdlib>
 #include <vector>
 
 #include "accel/wide_bvh/wide_bvh_traversal.h"
@@ -418,7 +419,7 @@ WIDE_TARGET WIDE_INLINE bool singleStep(const WideBvh& bvh, const RayPre& pre, H
 // One packet's walk, a visit at a time (step), so that several packets can
 // take turns: while one visits a node, the lines of the others' next visits
 // arrive (tracePackets).
-template <typename Mask, bool kAnyHit>
+template <typename Mask, bool kAnyHit, bool kTakeTurns>
 class PacketWalk {
 public:
   using Entry = PacketEntry<Mask>;
@@ -449,7 +450,7 @@ public:
     alive_ = count >= int(8 * sizeof(Mask)) ? ~Mask(0) : (Mask(1) << count) - 1u;
     stack_[top_++] = Entry{0u, -kInfinity, alive_};
     singles_ = 0;
-    if (singleStacks_.size() < size_t(config.singleRayAt) * bvh.stackSize())
+    if (kTakeTurns && singleStacks_.size() < size_t(config.singleRayAt) * bvh.stackSize())
       singleStacks_.resize(size_t(config.singleRayAt) * bvh.stackSize());
   }
   bool done() const { return top_ == 0 && singles_ == 0; }
@@ -505,7 +506,19 @@ public:
     if (!live) return;
     if (!wideIsLeaf(entry.ref) && __builtin_popcountll(live) <= config.singleRayAt) {
       // Their other entries stay on the packet's stack: a subtree is walked once per ray either way.
-      // The rays walk it taking turns (stepSingles), the packet's stack waiting until all are done.
+      if constexpr (!kTakeTurns) {
+        for (Mask m = live; m;) {
+          const int r = __builtin_ctzll(m);
+          m &= m - 1;
+          traverseSubtree(bvh, {}, rays.ray(r), pre[r], entry.ref, kAnyHit, TriangleTest::MollerTrumbore, best[r],
+                          steps[r], tests[r]);
+          tBest[r] = best[r].t;
+          if (kAnyHit && best[r].found()) alive &= ~(Mask(1) << r);
+        }
+        if (!alive) top = 0;  // every ray has stopped
+        return;
+      }
+      // Taking turns, the rays walk it a visit at a time (stepSingles), the packet's stack waiting until all are done.
       for (Mask m = live; m;) {
         const int r = __builtin_ctzll(m);
         m &= m - 1;
@@ -677,17 +690,28 @@ private:
 // 2 in flight 1.09, 4 1.16, 8 1.08 (docs/bench-speed/NOTES.md).
 constexpr int kPacketsInFlight = 4;
 template <typename Mask, bool kAnyHit>
-WIDE_TARGET void tracePackets(const WideBvh& bvh, std::span<const PacketJob> jobs, const PacketConfig& config) {
-  PacketWalk<Mask, kAnyHit> walks[kPacketsInFlight];
+WIDE_TARGET void tracePackets(const WideBvh& bvh, std::span<const PacketJob> jobs, const PacketConfig& config,
+                              bool takeTurns) {
+  if (!takeTurns) {  // one packet after another, each to its end
+    PacketWalk<Mask, kAnyHit, false> walk;
+    for (const PacketJob& job : jobs) {
+      walk.start(bvh, job, config);
+      while (!walk.done()) walk.step();
+      walk.finish();
+    }
+    return;
+  }
+  PacketWalk<Mask, kAnyHit, true> walks[kPacketsInFlight];
   int slot[kPacketsInFlight], busy = 0;  // the walks under way
   size_t nextJob = 0;
-  for (; busy < kPacketsInFlight && nextJob < jobs.size(); ++busy) {
+  static const int flight = std::getenv("PT_FLIGHT") ? std::atoi(std::getenv("PT_FLIGHT")) : kPacketsInFlight;
+  for (; busy < flight && nextJob < jobs.size(); ++busy) {
     slot[busy] = busy;
     walks[busy].start(bvh, jobs[nextJob++], config);
   }
   while (busy > 0) {
     for (int i = 0; i < busy;) {
-      PacketWalk<Mask, kAnyHit>& walk = walks[slot[i]];
+      PacketWalk<Mask, kAnyHit, true>& walk = walks[slot[i]];
       if (!walk.done()) walk.step();
       if (!walk.done()) {
         prefetchVisit(bvh, walk.next());
@@ -713,18 +737,18 @@ Hit traverseWideBvhAvx2(const WideBvh& bvh, std::span<const Triangle> tris, cons
 }
 
 void traceWideBvhPacketsAvx2(const WideBvh& bvh, std::span<const PacketJob> jobs, bool anyHit,
-                             const PacketConfig& config) {
+                             const PacketConfig& config, bool takeTurns) {
   const bool wide = std::any_of(jobs.begin(), jobs.end(), [](const PacketJob& job) { return job.rays->count > 32; });
   if (wide)
-    (anyHit ? tracePackets<uint64_t, true> : tracePackets<uint64_t, false>)(bvh, jobs, config);
+    (anyHit ? tracePackets<uint64_t, true> : tracePackets<uint64_t, false>)(bvh, jobs, config, takeTurns);
   else
-    (anyHit ? tracePackets<uint32_t, true> : tracePackets<uint32_t, false>)(bvh, jobs, config);
+    (anyHit ? tracePackets<uint32_t, true> : tracePackets<uint32_t, false>)(bvh, jobs, config, takeTurns);
 }
 
 void traceWideBvhPacketAvx2(const WideBvh& bvh, const RayPacket& rays, bool anyHit, std::span<Hit> hits,
                             std::span<RayStats> stats, const PacketConfig& config) {
   const PacketJob job{&rays, hits.data(), stats.data()};
-  traceWideBvhPacketsAvx2(bvh, std::span<const PacketJob>(&job, 1), anyHit, config);
+  traceWideBvhPacketsAvx2(bvh, std::span<const PacketJob>(&job, 1), anyHit, config, false);
 }
 
 bool wideBvhAvx2Available() {
@@ -745,7 +769,7 @@ Hit traverseWideBvhAvx2(const WideBvh& bvh, std::span<const Triangle> tris, cons
 
 void traceWideBvhPacketAvx2(const WideBvh&, const RayPacket&, bool, std::span<Hit>, std::span<RayStats>,
                             const PacketConfig&) {}
-void traceWideBvhPacketsAvx2(const WideBvh&, std::span<const PacketJob>, bool, const PacketConfig&) {}
+void traceWideBvhPacketsAvx2(const WideBvh&, std::span<const PacketJob>, bool, const PacketConfig&, bool) {}
 
 bool wideBvhAvx2Available() { return false; }
 

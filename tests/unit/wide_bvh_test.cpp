@@ -267,9 +267,9 @@ TEST_P(WideBvhMeshTest, AcrossRaysFindAndCountWhatRaysAloneDo) {
 // bvh8-packet's batch entry point on an image-shaped batch (a partly inactive
 // 13x7 image: tiles cut at the edges) of camera rays, then of shadow rays to a
 // point mixed with reflection-like rays: brute force's nearest t and any-hit answer.
-// Packets traced together (traceWideBvhPacketsAvx2: they take turns a visit
-// at a time, more of them than walk at once, so slots are reused) against the
-// same packets traced one at a time: every hit and count the same, to the bit.
+// Packets traced together (traceWideBvhPacketsAvx2; taking turns a visit at a
+// time, more of them than walk at once, so slots are reused; and not) against
+// the same packets traced one at a time: every hit and count the same, to the bit.
 // Packets of many sizes, some over 32 rays (then all walk with 64-bit masks).
 TEST_P(WideBvhMeshTest, PacketsTracedTogetherEqualOneAtATime) {
   if (!wideBvhAvx2Available()) GTEST_SKIP() << "no AVX2";
@@ -298,20 +298,23 @@ TEST_P(WideBvhMeshTest, PacketsTracedTogetherEqualOneAtATime) {
           traceWideBvhPacketAvx2(bvh, packet, anyHit, std::span<Hit>(alone.data() + at, m),
                                  std::span<RayStats>(aloneStats.data() + at, m), config);
         }
-        traceWideBvhPacketsAvx2(bvh, jobs, anyHit, config);
-        for (size_t k = 0; k < n; ++k)
-          for (int r = 0; r < packets[first + k].count; ++r) {
-            const size_t i = k * kWidePacketMax + size_t(r);
-            const std::string where = "packet " + std::to_string(first + k) + " ray " + std::to_string(r) +
-                                      " singleRayAt " + std::to_string(config.singleRayAt) + " anyHit " +
-                                      std::to_string(anyHit);
+        for (bool takeTurns : {true, false}) {
+          std::fill(togetherStats.begin(), togetherStats.end(), RayStats{});
+          traceWideBvhPacketsAvx2(bvh, jobs, anyHit, config, takeTurns);
+          for (size_t k = 0; k < n; ++k)
+            for (int r = 0; r < packets[first + k].count; ++r) {
+              const size_t i = k * kWidePacketMax + size_t(r);
+              const std::string where = "packet " + std::to_string(first + k) + " ray " + std::to_string(r) +
+                                        " singleRayAt " + std::to_string(config.singleRayAt) + " anyHit " +
+                                        std::to_string(anyHit) + " takeTurns " + std::to_string(takeTurns);
             EXPECT_EQ(together[i].t, alone[i].t) << where;
             EXPECT_EQ(together[i].u, alone[i].u) << where;
             EXPECT_EQ(together[i].v, alone[i].v) << where;
             EXPECT_EQ(together[i].id, alone[i].id) << where;
             EXPECT_EQ(togetherStats[i].steps, aloneStats[i].steps) << where;
             EXPECT_EQ(togetherStats[i].triangleTests, aloneStats[i].triangleTests) << where;
-          }
+            }
+        }
       }
     }
   }
