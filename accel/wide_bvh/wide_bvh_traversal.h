@@ -76,10 +76,10 @@ void traceWideBvhPacketAvx2(const WideBvh& bvh, const RayPacket& rays, bool anyH
 void traceWideBvhPacketsAvx2(const WideBvh& bvh, std::span<const PacketJob> jobs, bool anyHit,
                              const PacketConfig& config, bool takeTurns);
 // bvh8-packet takes turns over trees larger than this. Turns pay where a walk
-// waits on memory: at 5 M and 20 M triangles (trees of 0.4 and 1.6 GB) frames
-// were 1.3x faster; on the bunny, Kitchen and Robots (trees of 4-8 MB, in this
-// machine's 32 MB L3) their upkeep made frames up to 1.17x slower
-// (docs/bench-speed/NOTES.md).
+// waits on memory: the dragon's 66 MB tree and Conference's 24 MB frames
+// 0.73x and 0.89x the time (-b 1, against one packet at a time); on the
+// bunny, Kitchen and Robots (trees of 5-8 MB, in this machine's 32 MB L3) the
+// turns' upkeep made frames up to 1.17x slower (docs/bench-speed/NOTES.md).
 inline constexpr size_t kTakeTurnsAboveBytes = size_t(16) << 20;
 
 }  // namespace passtrace
