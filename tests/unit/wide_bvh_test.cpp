@@ -88,6 +88,21 @@ void expectSubtreeInside(const WideBvh& bvh, std::span<const Triangle> tris, uin
 
 class WideBvhMeshTest : public ::testing::TestWithParam<NamedMesh> {};
 
+// The same hit to the bit (or, for any-hit rays, `sameHitOnlyFound`: whether one
+// was found) and the same counts.
+void expectSameHitAndCounts(const Hit& got, const Hit& want, const RayStats& gotStats, const RayStats& wantStats,
+                            const std::string& where, bool sameHitOnlyFound = false) {
+  ASSERT_EQ(got.found(), want.found()) << where;
+  if (!sameHitOnlyFound) {
+    EXPECT_EQ(got.t, want.t) << where;
+    EXPECT_EQ(got.u, want.u) << where;
+    EXPECT_EQ(got.v, want.v) << where;
+    EXPECT_EQ(got.id, want.id) << where;
+  }
+  EXPECT_EQ(gotStats.steps, wantStats.steps) << where;
+  EXPECT_EQ(gotStats.triangleTests, wantStats.triangleTests) << where;
+}
+
 TEST_P(WideBvhMeshTest, BuildersGiveValidTrees) {
   const auto& tris = GetParam().tris;
   expectValidBinary(buildBinnedSahBvh(tris), tris);
@@ -251,15 +266,7 @@ TEST_P(WideBvhMeshTest, AcrossRaysFindAndCountWhatRaysAloneDo) {
           const std::string where = "ray " + std::to_string(begin + k) + " acrossRaysAt " +
                                     std::to_string(config.acrossRaysAt) + " nodesAcrossAt " +
                                     std::to_string(config.nodesAcrossAt);
-          ASSERT_EQ(across[k].found(), alone[k].found()) << where;
-          if (!anyHit) {
-            EXPECT_EQ(across[k].t, alone[k].t) << where;
-            EXPECT_EQ(across[k].u, alone[k].u) << where;
-            EXPECT_EQ(across[k].v, alone[k].v) << where;
-            EXPECT_EQ(across[k].id, alone[k].id) << where;
-          }
-          EXPECT_EQ(acrossStats[k].steps, aloneStats[k].steps) << where;
-          EXPECT_EQ(acrossStats[k].triangleTests, aloneStats[k].triangleTests) << where;
+          expectSameHitAndCounts(across[k], alone[k], acrossStats[k], aloneStats[k], where, anyHit);
         }
       }
 }
@@ -307,12 +314,7 @@ TEST_P(WideBvhMeshTest, PacketsTracedTogetherEqualOneAtATime) {
               const std::string where = "packet " + std::to_string(first + k) + " ray " + std::to_string(r) +
                                         " singleRayAt " + std::to_string(config.singleRayAt) + " anyHit " +
                                         std::to_string(anyHit) + " takeTurns " + std::to_string(takeTurns);
-            EXPECT_EQ(together[i].t, alone[i].t) << where;
-            EXPECT_EQ(together[i].u, alone[i].u) << where;
-            EXPECT_EQ(together[i].v, alone[i].v) << where;
-            EXPECT_EQ(together[i].id, alone[i].id) << where;
-            EXPECT_EQ(togetherStats[i].steps, aloneStats[i].steps) << where;
-            EXPECT_EQ(togetherStats[i].triangleTests, aloneStats[i].triangleTests) << where;
+              expectSameHitAndCounts(together[i], alone[i], togetherStats[i], aloneStats[i], where);
             }
         }
       }
