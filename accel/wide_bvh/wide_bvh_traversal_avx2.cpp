@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <cstdlib>
 #include <vector>
 
 #include "accel/wide_bvh/wide_bvh_traversal.h"
@@ -704,8 +703,7 @@ WIDE_TARGET void tracePackets(const WideBvh& bvh, std::span<const PacketJob> job
   PacketWalk<Mask, kAnyHit, true> walks[kPacketsInFlight];
   int slot[kPacketsInFlight], busy = 0;  // the walks under way
   size_t nextJob = 0;
-  static const int flight = std::getenv("PT_FLIGHT") ? std::atoi(std::getenv("PT_FLIGHT")) : kPacketsInFlight;
-  for (; busy < flight && nextJob < jobs.size(); ++busy) {
+  for (; busy < kPacketsInFlight && nextJob < jobs.size(); ++busy) {
     slot[busy] = busy;
     walks[busy].start(bvh, jobs[nextJob++], config);
   }
