@@ -222,7 +222,9 @@ private:
           if (cost < bestCost) bestCost = cost, bestAxis = a, bestSplit = b;
         }
       }
-      // Some axis has extent, so its first and last bins both hold centroids: bestAxis >= 0.
+      // Some axis has extent, so its first and last bins both hold centroids;
+      // bestAxis < 0 only when every cost overflowed (boxes beyond about 1e19).
+      if (bestAxis < 0) return medianSplit(node, begin, end, ce);
       const float area = bounds.area();
       const float splitCost =
           config_.traversalCost + (area > 0.0f ? config_.intersectionCost * bestCost / area : leafCost);
@@ -250,6 +252,28 @@ private:
       build(left, begin, mid, leftBounds, leftCentroids);
       build(left + 1, mid, end, rightBounds, rightCentroids);
     }
+  }
+
+  // Halves the list at the median centroid of the widest axis: where areas
+  // overflow float, SAH cannot rank the splits, but a tree must still be built.
+  void medianSplit(uint32_t node, uint32_t begin, uint32_t end, const float (&ce)[3]) {
+    const int axis = ce[0] >= ce[1] && ce[0] >= ce[2] ? 0 : (ce[1] >= ce[2] ? 1 : 2);
+    uint32_t* first = out_.prims.data() + begin;
+    const uint32_t mid = begin + (end - begin) / 2;
+    std::nth_element(first, out_.prims.data() + mid, out_.prims.data() + end,
+                     [&](uint32_t a, uint32_t b) { return prims_[a].centroid()[axis] < prims_[b].centroid()[axis]; });
+    Box4 boxes[2] = {Box4::empty(), Box4::empty()}, centroids[2] = {Box4::empty(), Box4::empty()};
+    for (uint32_t i = begin; i < end; ++i) {
+      boxes[i >= mid].extend(prims_[out_.prims[i]].box);
+      centroids[i >= mid].extend(prims_[out_.prims[i]].centroidBox());
+    }
+    const uint32_t left = next_.fetch_add(2);
+    nodes_[node].first = left;
+    nodes_[node].count = 0;
+    nodes_[left].bounds = boxes[0];
+    nodes_[left + 1].bounds = boxes[1];
+    build(left, begin, mid, boxes[0], centroids[0]);
+    build(left + 1, mid, end, boxes[1], centroids[1]);
   }
 
   const SahBuildConfig& config_;

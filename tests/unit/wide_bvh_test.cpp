@@ -383,5 +383,49 @@ TEST(WideBvh, BinnedSahCostWithinThreePercentOfExactSweep) {
   EXPECT_EQ(bvhSahCost(buildBinnedSahBvh(tris)), binned);
 }
 
+// Scenes of any size: soups of triangles from 1e-30 to 1e30 in size, at the
+// origin and far from it (where the float grid is coarse against the
+// triangles). At 1e30 every surface area overflows float, so SAH cannot rank
+// the splits (the binned build halves at the median instead of indexing
+// past its bins). Every child box holds its subtree, and rays through the
+// triangles' vertices along the axes (exactly on the boxes' planes) and a mix
+// of others find brute force's hit, closest and any, in both builds.
+TEST(WideBvh, TrianglesFromTinyToHugeLoseNoHit) {
+  for (const float size : {1e-30f, 1e-6f, 1.0f, 1e6f, 1e30f})
+    for (const float away : {0.0f, 1e3f}) {
+      const glm::vec3 offset(away * size, -0.5f * away * size, 3.0f * size);
+      std::vector<Triangle> tris = testmesh::triangleSoup(400, Aabb{glm::vec3(-1.0f), glm::vec3(1.0f)}, 0.3f, 5);
+      for (Triangle& t : tris)
+        for (glm::vec3* v : {&t.v0, &t.v1, &t.v2}) *v = *v * size + offset;
+      const std::string where = "size " + std::to_string(size) + " away " + std::to_string(away);
+      const WideBvh bvh = collapseToWideBvh(buildBinnedSahBvh(tris), tris);
+      const Aabb bounds = testmesh::boundsOf(tris);
+      std::vector<int> seen(tris.size(), 0);
+      expectSubtreeInside(bvh, tris, 0, bounds, seen);
+      for (size_t i = 0; i < tris.size(); ++i) EXPECT_EQ(seen[i], 1) << where << " triangle " << i;
+      std::vector<Ray> rays = testmesh::rayMix(bounds, 40, 3);
+      for (size_t i = 0; i < tris.size(); i += 7)
+        for (int axis = 0; axis < 3; ++axis) {
+          Ray ray{tris[i].v2, glm::vec3(0.0f), kInfinity};
+          ray.origin[axis] = bounds.min[axis] - (bounds.max[axis] - bounds.min[axis]);
+          ray.direction[axis] = 1.0f;
+          rays.push_back(ray);
+        }
+      for (const bool anyHit : {false, true})
+        for (size_t i = 0; i < rays.size(); ++i) {
+          const Hit brute = intersectBruteForce(tris, rays[i], anyHit, nullptr, TriangleTest::MollerTrumbore);
+          std::vector<Hit> got{traverseWideBvhScalar(bvh, tris, rays[i], anyHit, TriangleTest::MollerTrumbore, nullptr)};
+          if (wideBvhAvx2Available())
+            got.push_back(traverseWideBvhAvx2(bvh, tris, rays[i], anyHit, TriangleTest::MollerTrumbore, nullptr));
+          for (const Hit& hit : got) {
+            ASSERT_EQ(hit.found(), brute.found()) << where << " ray " << i << " any hit " << anyHit;
+            if (!anyHit && brute.found()) {
+              EXPECT_EQ(hit.t, brute.t) << where << " ray " << i;
+            }
+          }
+        }
+    }
+}
+
 }  // namespace
 }  // namespace passtrace
