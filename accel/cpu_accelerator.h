@@ -35,6 +35,10 @@ struct AccelStats {
   // builders' constants (kd_sah_cost.h); 0 = not computed for this structure.
   double sahCost = 0;
   uint64_t structureBytes = 0;    // nodes + references as the traversal stores them; 0 = unknown
+  // What one node test and one triangle test read from the structure (the
+  // scaling report's bytes per ray against bandwidth); 0 = not stated.
+  uint32_t nodeTestBytes = 0;
+  uint32_t triangleTestBytes = 0;
 };
 
 // Construction parameters of every structure (tracy's -c -t -g -e -d).

@@ -92,14 +92,16 @@ FrameStats statsOf(const json& j) {
 }
 
 json accelJson(const AccelStats& s) {
-  return {s.name, s.buildMs, s.floatsPerTriangle, s.nodes, s.leaves, s.references, s.depth, s.sahCost,
-          s.structureBytes};
+  return {s.name,  s.buildMs,    s.floatsPerTriangle, s.nodes,         s.leaves,
+          s.references, s.depth, s.sahCost,        s.structureBytes, s.nodeTestBytes,
+          s.triangleTestBytes};
 }
 
 AccelStats accelOf(const json& j) {
   AccelStats s;
   s.name = j.at(0), s.buildMs = j.at(1), s.floatsPerTriangle = j.at(2), s.nodes = j.at(3), s.leaves = j.at(4);
   s.references = j.at(5), s.depth = j.at(6), s.sahCost = j.at(7), s.structureBytes = j.at(8);
+  s.nodeTestBytes = j.at(9), s.triangleTestBytes = j.at(10);
   return s;
 }
 

@@ -40,7 +40,11 @@ nlohmann::json toJson(const AccelStats& s) {
           {"accel_depth", s.depth},
           {"accel_references", s.references},
           // The structure's cost and memory (0: not computed for this structure).
-          {"structure", {{"sah_cost", s.sahCost}, {"structure_bytes", s.structureBytes}}}};
+          {"structure",
+           {{"sah_cost", s.sahCost},
+            {"structure_bytes", s.structureBytes},
+            {"node_test_bytes", s.nodeTestBytes},
+            {"triangle_test_bytes", s.triangleTestBytes}}}};
 }
 
 nlohmann::json toJson(const RunReport& r) {

@@ -25,6 +25,9 @@ minimum of `-m 2` frames:
           threads (build/tests/measure/measure_bare_embree), and traversal alone
           of primary, shadow and AO rays on 1 thread (measure_ray_kinds).
 
+  machine the memory bandwidth (STREAM triad) on 2 threads, once per round
+          (build/tests/measure/measure_machine_peak), for the roofline.
+
 Measured per run: build ms, frame ms and Mrays/s (passtrace --json), the
 structure's bytes per triangle (`structure_bytes` / `triangles`) and the
 process's peak resident memory (its ru_maxrss, from os.wait4 on that one child):
@@ -33,6 +36,13 @@ leaves out the constant part (process, GL, image) and is the honest bytes per
 triangle. A run the memory check refuses (passtrace's one line "... need about
 X GiB; Y GiB available (nothing was built)") is recorded as "does not fit" with
 that line, not as a failure, and is not tried again in later rounds.
+
+The roofline puts each CPU row's bytes per ray, as its traversal reads them
+(--json: node and triangle tests per ray times the bytes the row states one
+of each reads, `structure.node_test_bytes` and `triangle_test_bytes`), times
+its rays per second against the triad bandwidth: the traffic if no ray
+shared a line with another or found it in a cache, an upper bound on what
+the frame could ask of memory.
 
 Rounds: per scene, every row and ray kind runs once (round 1), then again
 (round 2), ... (--repeats rounds, default 3), the rows' order rotated each round,
@@ -78,6 +88,7 @@ THREADS = 2
 TOOL_REPEATS = 3
 SPHERES_DEFAULT = 1_000_000  # kSphereFieldDefaultTriangles: what the tools load as "spheres"
 GOAL = 1.2    # issue 36: the fastest CPU row >= 1.2x Embree -r 3 in frame time
+MACHINE = "machine"  # the scene label of the bandwidth measurement
 REFUSED = re.compile(r"need about .* available \(nothing was built\)")
 REFUSED_COUNT = re.compile(r": (\d+) triangles with ")
 
@@ -120,9 +131,14 @@ class Plan:
                 self.scenes.append((s, ["-s", s], None, s))
             else:
                 self.skipped.append(s)
-        tools = {t: measure_tool(binary, t) for t in ("measure_bare_embree", "measure_ray_kinds")}
+        tools = {t: measure_tool(binary, t) for t in ("measure_bare_embree", "measure_ray_kinds",
+                                                      "measure_machine_peak")}
         self.tools_missing = [t for t, p in tools.items() if p is None]
         self.jobs = []
+        for k in range(rounds if tools["measure_machine_peak"] else 0):
+            key = f"scale__{MACHINE}__tool__peak__r{k + 1}"
+            self.jobs.append(("tool", {"key": key, "scene": MACHINE, "requested": None, "tool": "peak",
+                                       "tool_path": "measure_machine_peak", "round": k + 1}, [str(THREADS)], key))
         for label, scene_args, requested, tool_scene in self.scenes:
             for k in range(rounds):
                 rotated = self.rows[k % len(self.rows):] + self.rows[:k % len(self.rows)] if self.rows else []
@@ -484,6 +500,36 @@ def bare_table(cells, tools, plan):
     return rows
 
 
+def roofline_table(cells, tools, plan):
+    """Per scene, kind and CPU row: bytes per ray as the traversal reads them, their rate against the triad's;
+    None when no bandwidth was measured."""
+    triad = [r["result"].get("triad_gb_per_s") for r in tools.get((MACHINE, "peak"), [])
+             if r.get("status") == "ok" and r["result"].get("triad_gb_per_s")]
+    if not triad:
+        return None, None
+    bandwidth = max(triad)
+    rows = []
+    for label, _, _, _ in plan.scenes:
+        for kind in plan.kinds:
+            for name, renderer in plan.rows:
+                c = cells.get((label, name, renderer, kind))
+                if renderer != "cpu" or c is None or not c.ok:
+                    continue
+                best = min(c.ok, key=lambda r: r["result"].get("frame_ms") or float("inf"))["result"]
+                nodes, tris = best.get("node_tests_per_ray"), best.get("triangle_tests_per_ray")
+                node_bytes, tri_bytes = field(best, "node_test_bytes"), field(best, "triangle_test_bytes")
+                if nodes is None or tris is None or not node_bytes or not tri_bytes:
+                    continue
+                per_ray = nodes * node_bytes + tris * tri_bytes
+                gbs = per_ray * best["mrays_per_s"] / 1e3
+                rows.append([label, kind, name, num(best["mrays_per_s"], 2), num(nodes, 2), num(tris, 2),
+                             num(per_ray, 0), num(c.structure_bytes / 2**20 if c.structure_bytes else None, 1),
+                             num(gbs, 1), f"{100 * gbs / bandwidth:.0f} %"])
+    table = md_table(["scene", "ray kind", "row", "Mrays/s", "node tests / ray", "triangle tests / ray",
+                      "bytes / ray", "structure MiB", "GB/s asked", "of triad"], rows) if rows else None
+    return table, bandwidth
+
+
 KIND_PATHS = ["bvh8-packet", "bvh8", "embree-1", "embree-packets"]
 
 
@@ -632,7 +678,8 @@ def write_report(out_dir, results, records, plan):
         if rec.get("binary_mtime") and not rec.get("not_rerun"):
             what = "passtrace" if "tool" not in meta else meta["tool_path"]
             builds.setdefault(what, set()).add(rec["binary_mtime"])
-            scene_builds.setdefault((meta["scene"], what), set()).add(rec["binary_mtime"])
+            if meta["scene"] != MACHINE:
+                scene_builds.setdefault((meta["scene"], what), set()).add(rec["binary_mtime"])
     changed = {w: sorted(s) for w, s in builds.items() if len(s) > 1}
     if changed:
         mixed = sorted({s for (s, _), b in scene_builds.items() if len(b) > 1},
@@ -687,6 +734,22 @@ def write_report(out_dir, results, records, plan):
                   "the kind, least over the repeats and rounds.", "",
                   md_table(["scene", "kind", "rays"] + [f"{x} ms" for x in KIND_PATHS] +
                            ["embree-packets / bvh8-packet"], kinds_rows), ""]
+    roofline, bandwidth = roofline_table(cells, tools, plan)
+    lines += ["## Roofline: bytes per ray against bandwidth", ""]
+    if roofline:
+        lines += [
+            f"The CPU rows' traffic if every ray read its own nodes and triangles from memory: bytes per ray are "
+            "node tests × `structure.node_test_bytes` + triangle tests × `triangle_test_bytes` (--json; a node "
+            "test of bvh8 is a visit of an 8-wide node), GB/s asked is that × the row's best Mrays/s, against "
+            f"this machine's triad bandwidth on {THREADS} threads, **{bandwidth:.1f} GB/s** "
+            f"(`build/tests/measure/measure_machine_peak {THREADS}`, best of the rounds). It is an upper bound: "
+            "the rays of a packet share its visits, and a tree smaller than the last-level cache is read from "
+            "there. Near or above 100 % a row could be waiting on memory; far below, on the latency of the "
+            "misses it does take, or on its own work. Rows that state no bytes per test are left out.", "",
+            roofline, ""]
+    else:
+        lines += ["Not measured: no bandwidth (measure_machine_peak not built or failed) or no row stating its "
+                  "bytes per test.", ""]
     if notes:
         lines += ["## Notes: runs that did not fit or failed", ""]
         lines += [f"{i + 1}. {n}" for i, n in enumerate(notes)] + [""]

@@ -35,6 +35,8 @@ public:
     stats_.depth = bvh_.depth;
     stats_.sahCost = bvhSahCost(binary, sah);
     stats_.structureBytes = bvh_.nodes.size() * sizeof(WideBvhNode) + bvh_.packs.size() * sizeof(TrianglePack);
+    stats_.nodeTestBytes = sizeof(WideBvhNode);  // a node test is a visit: eight boxes and their links
+    stats_.triangleTestBytes = sizeof(TrianglePack) / kTrianglePackWidth;
     // Node floats only (the packs are the triangles): 6 x 8 bounds + 8 child references.
     stats_.floatsPerTriangle = tris.empty() ? 0.0 : double(bvh_.nodes.size()) * 56.0 / double(tris.size());
     traverse_ = wideBvhAvx2Available() ? traverseWideBvhAvx2 : traverseWideBvhScalar;

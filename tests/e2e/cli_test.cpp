@@ -122,9 +122,24 @@ TEST_F(Cli, StatsAndHeatmapDescribeTheTraversal) {
   EXPECT_NE(r.out.find("SAH cost"), std::string::npos) << r.out;
   EXPECT_GE(j["structure"]["sah_cost"].get<double>(), 1.0);
   EXPECT_GE(j["structure"]["structure_bytes"].get<double>(), 16.0 * 3 * j["accel_nodes"].get<double>());
+  EXPECT_EQ(j["structure"]["node_test_bytes"], 0);  // not stated by the kd rows
   fs::remove(path("heat.png"));
   fs::remove(path("s.json"));
   expectOneLineError(run("-s cornell -r 0 --heatmap " + path("h.png")), "--heatmap");
+}
+
+// What a node test and a triangle test read (the scaling report's bytes per
+// ray): the 8-wide node of eight float boxes and links, a quarter of a pack of
+// four triangles (vertex and two edges), on both renderers' JSON paths.
+TEST_F(Cli, JsonStatesBytesPerTestWhereTheRowKnowsThem) {
+  for (const std::string row : {"bvh8", "bvh8-packet"}) {
+    const RunResult r = run("-s cornell -r 1 -a " + row + " -w 32 -b 1 --json " + path("b.json"));
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto j = nlohmann::json::parse(slurp(path("b.json")));
+    EXPECT_EQ(j["structure"]["node_test_bytes"], 8 * 6 * 4 + 8 * 4) << row;
+    EXPECT_EQ(j["structure"]["triangle_test_bytes"], 10 * 4) << row;
+    fs::remove(path("b.json"));
+  }
 }
 
 TEST_F(Cli, PreviewRendererWritesImage) {

@@ -2,7 +2,8 @@
 """Plumbing test of the scaling benchmark (scripts/bench.py --scale, issue 36):
 two small sphere fields at 16x16 in two rounds write a report and results.json
 with a record for every planned row x size x ray kind x round (a run or the
-memory check's "does not fit"), positive Mrays/s and bytes per triangle, no
+memory check's "does not fit"), positive Mrays/s and bytes per triangle, the
+bandwidth and the roofline's bytes per ray, no
 absolute paths, and a rerun runs nothing. No timing is asserted.
 
     python3 tests/slow/bench_scale_test.py --binary build/passtrace [--work DIR]
@@ -115,6 +116,11 @@ def main():
               "the report has the ratio table and every size")
         for kind in kinds:
             check(f"## {bench_scale.KIND_TITLES[kind][0].upper()}" in report, f"the report has a table for {kind}")
+        peaks = [r for r in results.get("runs", []) if r.get("meta", {}).get("tool") == "peak"]
+        check(len(peaks) == ROUNDS and all((r.get("result") or {}).get("triad_gb_per_s", 0) > 0 for r in peaks),
+              f"the bandwidth is measured once per round ({len(peaks)} records)")
+        check("## Roofline" in report and all(f"| {s} | {k} | bvh8-packet |" in report for s in labels for k in kinds),
+              "the roofline has bvh8-packet's bytes per ray on every size and ray kind")
         text = (out / "results.json").read_text() + report
         check(str(REPO) not in text and "/tmp/" not in text, "no absolute paths in results.json or REPORT.md")
         if has_matplotlib():
