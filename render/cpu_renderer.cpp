@@ -21,6 +21,23 @@ namespace {
 // over large trees: docs/bench-speed/NOTES.md).
 constexpr size_t kTileGroup = 8;
 
+// An image cut into tiles of tileW x tileH pixels, numbered row by row; the
+// last column and row of tiles may be cut short by the image's edge.
+struct TileGrid {
+  struct Tile {
+    size_t x0, y0, columns, rows;  // the first pixel, and the pixels across and down
+  };
+  size_t tileW, tileH, width, height, tilesX, tilesY;
+  TileGrid(size_t tileW, size_t tileH, int width, int height)
+      : tileW(tileW), tileH(tileH), width(size_t(width)), height(size_t(height)),
+        tilesX((size_t(width) + tileW - 1) / tileW), tilesY((size_t(height) + tileH - 1) / tileH) {}
+  size_t count() const { return tilesX * tilesY; }
+  Tile operator[](size_t tile) const {
+    const size_t x0 = (tile % tilesX) * tileW, y0 = (tile / tilesX) * tileH;
+    return {x0, y0, std::min(tileW, width - x0), std::min(tileH, height - y0)};
+  }
+};
+
 // Adds pixels' step and triangle-test sums to a frame's, and takes the larger maxima.
 void addPixelCounts(FrameStats& into, const FrameStats& counts) {
   into.steps += counts.steps;
@@ -109,11 +126,11 @@ uint64_t CpuRenderer::tracePackets(std::vector<PathState>& paths, std::vector<Hi
   const int width = g.width;
   constexpr size_t kTileW = 8, kTile = kTileW * 8;
   static_assert(kTile <= size_t(RayPacket::kMax), "a tile's shadow rays are one packet");
-  const size_t kTileH = primary ? 4 : 8;  // 8x8 primary tiles measured up to 1.2x slower (noisy; not kept)
-  const size_t tilesX = (size_t(width) + kTileW - 1) / kTileW, tilesY = (size_t(height) + kTileH - 1) / kTileH;
+  // 8x8 primary tiles measured up to 1.2x slower (noisy; not kept).
+  const TileGrid grid(kTileW, primary ? 4 : 8, width, height);
   std::atomic<uint64_t> active{0};
   const size_t tileGroup = std::clamp<size_t>(size_t(accelerator_.packetsAtOnce()), 1, kTileGroup);
-  parallelFor(tilesX * tilesY, std::max<size_t>(tileGroup, 256 / kTile), threads_, [&](size_t begin, size_t end) {
+  parallelFor(grid.count(), std::max<size_t>(tileGroup, 256 / kTile), threads_, [&](size_t begin, size_t end) {
     uint64_t count = 0;
     // Per tile of the group: its hits, its pixels row by row, its closest-hit
     // (primary) and shadow packets and each packet's pixels, hits and counts.
@@ -134,17 +151,16 @@ uint64_t CpuRenderer::tracePackets(std::vector<PathState>& paths, std::vector<Hi
     for (size_t first = begin; first < end; first += tileGroup) {
       const size_t group = std::min(tileGroup, end - first);
       for (size_t t = 0; t < group; ++t) {
-        const size_t tile = first + t;
+        const TileGrid::Tile tile = grid[first + t];
+        const size_t x0 = tile.x0, y0 = tile.y0;
         size_t n = 0;
         packets[0][t].count = packets[1][t].count = 0;
-        const size_t x0 = (tile % tilesX) * kTileW, y0 = (tile / tilesX) * kTileH;
         float screenX[kTileW] = {}, dirX[kTileW], dirY[kTileW], dirZ[kTileW];
         if (primary)
-          for (size_t x = x0; x < std::min(x0 + kTileW, size_t(width)); ++x)
-            screenX[x - x0] = cameraScreenX(*g.basis, int(x));
-        for (size_t y = y0; y < std::min(y0 + kTileH, size_t(height)); ++y) {
+          for (size_t x = x0; x < x0 + tile.columns; ++x) screenX[x - x0] = cameraScreenX(*g.basis, int(x));
+        for (size_t y = y0; y < y0 + tile.rows; ++y) {
           if (primary) cameraDirections(*g.basis, screenX, cameraScreenY(*g.basis, int(y)), dirX, dirY, dirZ);
-          for (size_t x = x0; x < std::min(x0 + kTileW, size_t(width)); ++x) {
+          for (size_t x = x0; x < x0 + tile.columns; ++x) {
             const size_t j = n++;
             pixel[t][j] = y * size_t(width) + x;
             PathState& path = paths[pixel[t][j]];
@@ -214,10 +230,10 @@ uint64_t CpuRenderer::tracePrimaryOnly(const CameraBasis& basis, int width, int 
                                        FrameResult& pixels) const {
   constexpr size_t kTileW = 8, kTileH = 4, kTile = kTileW * kTileH;
   static_assert(kTile <= size_t(RayPacket::kMax), "a tile's rays are one packet");
-  const size_t tilesX = (size_t(width) + kTileW - 1) / kTileW, tilesY = (size_t(height) + kTileH - 1) / kTileH;
+  const TileGrid grid(kTileW, kTileH, width, height);
   std::mutex statsLock;
   const size_t tileGroup = std::clamp<size_t>(size_t(accelerator_.packetsAtOnce()), 1, kTileGroup);
-  parallelFor(tilesX * tilesY, std::max<size_t>(tileGroup, 256 / kTile), threads_, [&](size_t begin, size_t end) {
+  parallelFor(grid.count(), std::max<size_t>(tileGroup, 256 / kTile), threads_, [&](size_t begin, size_t end) {
     FrameStats counts;  // this work item's share of the frame's sums and maxima
     struct Scratch {  // the thread's own, made once (as tracePackets')
       RayPacket packets[kTileGroup];
@@ -230,10 +246,8 @@ uint64_t CpuRenderer::tracePrimaryOnly(const CameraBasis& basis, int width, int 
     for (size_t first = begin; first < end; first += tileGroup) {
       const size_t group = std::min(tileGroup, end - first);
       for (size_t g = 0; g < group; ++g) {
-        const size_t tile = first + g;
         RayPacket& packet = packets[g];
-        const size_t x0 = (tile % tilesX) * kTileW, y0 = (tile / tilesX) * kTileH;
-        const size_t columns = std::min(kTileW, size_t(width) - x0), rows = std::min(kTileH, size_t(height) - y0);
+        const auto [x0, y0, columns, rows] = grid[first + g];
         float screenX[kTileW] = {}, dirX[kTileW], dirY[kTileW], dirZ[kTileW];
         for (size_t x = 0; x < columns; ++x) screenX[x] = cameraScreenX(basis, int(x0 + x));
         packet.count = int(rows * columns);
@@ -252,10 +266,8 @@ uint64_t CpuRenderer::tracePrimaryOnly(const CameraBasis& basis, int width, int 
       }
       accelerator_.tracePackets(std::span<const PacketJob>(jobs, group), false);
       for (size_t g = 0; g < group; ++g) {
-        const size_t tile = first + g;
         const RayPacket& packet = packets[g];
-        const size_t x0 = (tile % tilesX) * kTileW, y0 = (tile / tilesX) * kTileH;
-        const size_t columns = std::min(kTileW, size_t(width) - x0), rows = std::min(kTileH, size_t(height) - y0);
+        const auto [x0, y0, columns, rows] = grid[first + g];
         const size_t n = size_t(packet.count);
         for (size_t k = 0; k < n; ++k) prefetchShading(packetHits[g][k]);  // their misses overlap
         for (size_t y = 0, k = 0; y < rows; ++y)

@@ -1,6 +1,5 @@
 #include "render/exr_io.h"
 
-#include <algorithm>
 #include <cstring>
 #include <exception>
 #include <stdexcept>
@@ -12,16 +11,15 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 
+#include "scenes/one_line_message.h"
+
 namespace passtrace {
 namespace {
 
 namespace fs = std::filesystem;
 
-[[noreturn]] void failExr(const fs::path& path, std::string reason) {
-  // OpenEXR's messages may contain newlines; ours are one line.
-  std::replace(reason.begin(), reason.end(), '\n', ' ');
-  if (reason.empty()) reason = "unknown OpenEXR error";
-  throw std::runtime_error(path.string() + ": " + reason);
+[[noreturn]] void failExr(const fs::path& path, const std::string& reason) {
+  throw std::runtime_error(path.string() + ": " + oneLineMessage(reason, "unknown OpenEXR error"));
 }
 
 // An OpenEXR output stream into a string. OutputFile seeks back to write the

@@ -42,9 +42,10 @@ uint64_t estimatedRunBytes(RendererId renderer, const Structure* structure, uint
                            double extraBytesPerPixel) {
   double sceneBytes = kPreviewBytesPerTriangle * double(triangles);
   if (structure) {
-    sceneBytes = costOn(renderer, *structure).bytesFor(triangles);
+    const MemoryCost& cost = costOn(renderer, *structure);
+    sceneBytes = cost.bytesFor(triangles);
     // Not measured (a new structure): the most any measured one needs there.
-    if (costOn(renderer, *structure).bytesPerTriangle <= 0)
+    if (cost.bytesPerTriangle <= 0)
       for (const Structure& s : structures())
         if (s.runsOn(renderer)) sceneBytes = std::max(sceneBytes, costOn(renderer, s).bytesFor(triangles));
   }

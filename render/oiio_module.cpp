@@ -11,18 +11,15 @@
 #include <OpenImageIO/imageio.h>
 
 #include "scenes/file_extension.h"
+#include "scenes/one_line_message.h"
 
 namespace passtrace {
 namespace {
 
 namespace fs = std::filesystem;
 
-[[noreturn]] void fail(const fs::path& path, std::string reason) {
-  // OIIO's messages may end in or contain newlines; ours are one line.
-  while (!reason.empty() && (reason.back() == '\n' || reason.back() == '\r')) reason.pop_back();
-  std::replace(reason.begin(), reason.end(), '\n', ' ');
-  if (reason.empty()) reason = "unknown OpenImageIO error";
-  throw std::runtime_error(path.string() + ": " + reason);
+[[noreturn]] void fail(const fs::path& path, const std::string& reason) {
+  throw std::runtime_error(path.string() + ": " + oneLineMessage(reason, "unknown OpenImageIO error"));
 }
 
 // The writer the extension names; it must be able to write to memory.

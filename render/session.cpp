@@ -411,9 +411,9 @@ RunReport runSession(const RunSettings& o, Progress& progress) {
   if (banded && o.height < ranks::count())
     throw std::runtime_error("--height " + std::to_string(o.height) + ": fewer rows than the " +
                              std::to_string(ranks::count()) + " MPI ranks to divide them among");
-  const uint64_t pixels = uint64_t(o.width) *
-                          uint64_t(banded ? RowBands::interleaved(o.height, ranks::count(), ranks::index()).localHeight()
-                                          : o.height);
+  // This rank's rows (the renderer's config below takes the same bands).
+  const RowBands bands = banded ? RowBands::interleaved(o.height, ranks::count(), ranks::index()) : RowBands{};
+  const uint64_t pixels = uint64_t(o.width) * uint64_t(banded ? bands.localHeight() : o.height);
   if (o.scene == "spheres")
     checkRunFitsInMemory(o.scene, o.renderer, structure, sphereFieldTriangles(o.sceneOptions.triangles), pixels,
                          extraBytesPerPixel(o));
@@ -445,7 +445,7 @@ RunReport runSession(const RunSettings& o, Progress& progress) {
   // among the ranks; rank 0 gathers them and writes everything.
   const int rankCount = ranks::count(), rank = ranks::index();
   RendererConfig config{o.width, o.height, o.bounces, o.threads, o.gpu, o.shading, {}};
-  if (banded) config.rows = RowBands::interleaved(o.height, rankCount, rank), config.height = config.rows.localHeight();
+  if (banded) config.rows = bands, config.height = bands.localHeight();
   std::vector<size_t> mine;  // the angles this rank renders
   for (size_t k = 0; k < views.size(); ++k)
     if (banded || int(k % size_t(rankCount)) == rank) mine.push_back(k);

@@ -8,23 +8,16 @@
 #include <stdexcept>
 #include <string>
 
+#include "scenes/one_line_message.h"
+
 namespace passtrace {
 
 struct SceneError : std::runtime_error {
-  explicit SceneError(const std::string& message) : std::runtime_error(oneLine(message)) {}
+  explicit SceneError(const std::string& message) : std::runtime_error(oneLineMessage(message)) {}
   SceneError(const std::filesystem::path& file, const std::string& reason)
       : SceneError(file.string() + ": " + reason) {}
   SceneError(const std::filesystem::path& file, std::size_t line, const std::string& reason)
       : SceneError(file.string() + ":" + std::to_string(line) + ": " + reason) {}
-
- private:
-  // Third-party messages (tinyobjloader's) may span lines; keep ours to one.
-  static std::string oneLine(std::string s) {
-    while (!s.empty() && (s.back() == '\n' || s.back() == '\r')) s.pop_back();
-    for (char& c : s)
-      if (c == '\n' || c == '\r') c = ' ';
-    return s;
-  }
 };
 
 }  // namespace passtrace

@@ -553,8 +553,9 @@ def run_jobs(jobs, runner, report_only, label):
 
     def end(i, rec):
         found[i] = rec
-        if rec["status"] != "ok":
-            log(f"      {jobs[i][3] + ' ' if pool.ranks > 1 else ''}failed: {rec['error']}")
+        if rec["status"] != "ok":  # the memory check's refusal is a result, not a failure
+            what = "does not fit" if rec["status"] == "does-not-fit" else "failed"
+            log(f"      {jobs[i][3] + ' ' if pool.ranks > 1 else ''}{what}: {rec['error']}")
 
     pool = bench_ranks.Pool(runner, begin, end)
     try:
@@ -662,7 +663,7 @@ def main(argv=None):
                         "--dacrt: of the animation (default 10)")
     parser.add_argument("--dynamic-size", type=int, help="--papay/--dacrt: image side of the dynamic-scene runs")
     parser.add_argument("--triangles-list", help="--scale: the sphere fields' triangle counts, comma-separated "
-                        "(default 100000,1000000,10000000,100000000)")
+                        "(default 100000,1000000,5000000,10000000,20000000,100000000)")
     parser.add_argument("--no-real-scenes", action="store_true", help="--scale: the sphere fields only, not the "
                         "real scenes (dragon, conference, sibenik)")
     args = parser.parse_args(argv)

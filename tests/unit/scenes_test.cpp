@@ -10,6 +10,7 @@
 
 #include "scenes/cornell_box.h"
 #include "scenes/obj_loader.h"
+#include "scenes/one_line_message.h"
 #include "scenes/scene_error.h"
 #include "scenes/scene_registry.h"
 
@@ -288,6 +289,13 @@ TEST(ObjLoaderErrors, RefusesFilesOver2GiB) {
 TEST(SceneError, FormatsOneLine) {
   EXPECT_STREQ(SceneError("a.obj", 7, "bad\nthing\n").what(), "a.obj:7: bad thing");
   EXPECT_STREQ(SceneError("a.obj", "no triangles").what(), "a.obj: no triangles");
+}
+
+// The same folding for the image libraries' messages (render/exr_io.cpp, oiio_module.cpp).
+TEST(OneLineMessage, FoldsLineBreaksAndNamesAnEmptyOne) {
+  EXPECT_EQ(oneLineMessage("cannot\r\nwrite\n\n"), "cannot  write");
+  EXPECT_EQ(oneLineMessage("\n", "unknown error"), "unknown error");
+  EXPECT_EQ(oneLineMessage("fine", "unknown error"), "fine");
 }
 
 // --- the Cornell box ------------------------------------------------------------
