@@ -92,9 +92,8 @@ FrameStats statsOf(const json& j) {
 }
 
 json accelJson(const AccelStats& s) {
-  return {s.name,  s.buildMs,    s.floatsPerTriangle, s.nodes,         s.leaves,
-          s.references, s.depth, s.sahCost,        s.structureBytes, s.nodeTestBytes,
-          s.triangleTestBytes};
+  return {s.name, s.buildMs, s.floatsPerTriangle, s.nodes, s.leaves, s.references,
+          s.depth, s.sahCost, s.structureBytes, s.nodeTestBytes, s.triangleTestBytes};
 }
 
 AccelStats accelOf(const json& j) {
