@@ -130,7 +130,7 @@ TEST_F(Cli, StatsAndHeatmapDescribeTheTraversal) {
 
 // What a node test and a triangle test read (the scaling report's bytes per
 // ray): the 8-wide node of eight float boxes and links, a quarter of a pack of
-// four triangles (vertex and two edges), on both renderers' JSON paths.
+// four triangles (vertex and two edges), for both rows that state them.
 TEST_F(Cli, JsonStatesBytesPerTestWhereTheRowKnowsThem) {
   for (const std::string row : {"bvh8", "bvh8-packet"}) {
     const RunResult r = run("-s cornell -r 1 -a " + row + " -w 32 -b 1 --json " + path("b.json"));
