@@ -665,7 +665,7 @@ def main(argv=None):
     parser.add_argument("--triangles-list", help="--scale: the sphere fields' triangle counts, comma-separated "
                         "(default 100000,1000000,5000000,10000000,20000000,100000000)")
     parser.add_argument("--no-real-scenes", action="store_true", help="--scale: the sphere fields only, not the "
-                        "real scenes (dragon, conference, sibenik)")
+                        "named scenes (dragon, conference, sibenik, and the goal's bunny, kitchen, robots)")
     args = parser.parse_args(argv)
     if args.scenes_dir:  # every passtrace this run starts finds them there
         os.environ["PASSTRACE_SCENES_DIR"] = str(pathlib.Path(args.scenes_dir).resolve())
