@@ -37,12 +37,14 @@ std::vector<Structure> makeRows() {
        .renderers = {Cpu, Gpu}, .number = 0, .numberedOn = {Cpu, Gpu},
        .cpu = makeKkBvhCpu, .stream = makeKkBvhStream, .mirror = makeKkBvhCpu,
        .memory = {.cpu = {221, 1.03}, .gpu = {217, 1.06}}, .reads = {P::SwapChildren}, .cone = makeKkBvhCone,
-       .coneStream = makeKkBvhStreamCone},
+       // In the scaling report the compact stream row: it traces 50 M triangles where others do not fit.
+       .coneStream = makeKkBvhStreamCone, .featured = {{Report::Scale, Gpu}, {Report::Stages, Gpu}}},
       {.name = "gs-bvh", .family = "bvh",
        .description = "Goldsmith/Salmon BVH (insertion build), walked as its escape-index sequence",
        .renderers = {Cpu, Gpu}, .number = 1, .numberedOn = {Cpu, Gpu},
        .cpu = makeGsBvhCpu, .stream = makeGsBvhStream, .mirror = makeGsBvhCpu,
-       .memory = {.cpu = {460, 1.01}, .gpu = {456, 1.05}}, .reads = {P::GsTries}},
+       .memory = {.cpu = {460, 1.01}, .gpu = {456, 1.05}}, .reads = {P::GsTries},
+       .featured = {{Report::Stages, Gpu}}},
       {.name = "kd-tree", .family = "kd",
        .description = "kd-tree, SAH with split clipping, stack traversal",
        .renderers = {Cpu}, .number = 2, .numberedOn = {Cpu},
@@ -189,13 +191,14 @@ std::vector<Structure> makeRows() {
        .cpu = makeBvh8Cpu,
        // The larger of the two builders' models, so the check holds for either: binned {131, 1.04},
        // --bvh8-builder sbvh 168 at 1 M and 134 at 4 M triangles.
-       .memory = {.cpu = {168}}, .reads = {P::Bvh8Builder}},
+       .memory = {.cpu = {168}}, .reads = {P::Bvh8Builder}, .featured = {{Report::Scale, Cpu}}},
       {.name = "bvh8-packet", .family = "wide_bvh",
        .description = "bvh8 traced in packets of 32 rays (8x4 pixels) for primary and shadow rays; over trees "
                       "larger than 16 MiB eight tiles' packets at once, taking turns to hide cache misses",
        .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeBvh8PacketCpu,
-       .memory = {.cpu = {168}}, .reads = {P::Bvh8Builder}, .cpuRayGrouping = RayGrouping::Tiles},  // as bvh8
+       .memory = {.cpu = {168}}, .reads = {P::Bvh8Builder}, .cpuRayGrouping = RayGrouping::Tiles,  // as bvh8
+       .featured = {{Report::Scale, Cpu}}},
       // Issue 17 item 3: kk-bvh's kernel over eight child orders (Hachisuka's MTBVH, one order per octant) of
       // bvh-stack's tree.
       {.name = "bvh-octant", .family = "bvh",
@@ -207,14 +210,15 @@ std::vector<Structure> makeRows() {
        // The GPU's (fused too) with boxes of one quantized texel and one-texel leaves over a shared triangle
        // stream, written from octant 0's sequence once the tree is freed; --bvh-builder sbvh's (361 at
        // 1 M, 368 at 4 M; the default's 366). The steps that got it there: docs/measurements.md.
-       .memory = {.cpu = {491}, .gpu = {368}}, .reads = {P::BvhBuilder}},
+       .memory = {.cpu = {491}, .gpu = {368}}, .reads = {P::BvhBuilder}, .featured = {{Report::Stages, Gpu}}},
       // Issue 17 item 3, fewer passes per bounce: bvh-octant's walk with ray generation and shading in one pass.
       {.name = "bvh-octant-fused", .family = "bvh",
        .description = "bvh-octant on the stream path with a primary bounce in one pass: ray generation, the "
                       "octant walk and thesis shading fused, at -l 0 (other bounces, shadings and -l pass by pass)",
        .renderers = {Gpu}, .number = std::nullopt, .numberedOn = {},
        .stream = makeOctantBvhFusedStream, .mirror = makeOctantBvhCpu,
-       .memory = {.gpu = {368}}, .reads = {P::BvhBuilder}},  // bvh-octant's data and the fused pass
+       .memory = {.gpu = {368}}, .reads = {P::BvhBuilder},  // bvh-octant's data and the fused pass
+       .featured = {{Report::Scale, Gpu}, {Report::Stages, Gpu}}},
   };
 #if PASSTRACE_HAVE_EMBREE
   rows.push_back({.name = "embree", .family = "embree",
@@ -223,7 +227,7 @@ std::vector<Structure> makeRows() {
                                  "through the CPU renderer",
                   .renderers = {Embree}, .number = std::nullopt, .numberedOn = {},
                   .cpu = makeEmbreeCpu,
-                  .memory = {.cpu = {192, 1.02}}, .reads = {}});
+                  .memory = {.cpu = {192, 1.02}}, .reads = {}, .featured = {{Report::Scale, Embree}}});
 #endif
   return rows;
 }
@@ -231,6 +235,14 @@ std::vector<Structure> makeRows() {
 std::string numberText(int number) { return std::to_string(number); }
 
 }  // namespace
+
+std::string_view reportName(Report report) {
+  switch (report) {
+    case Report::Scale: return "scale";
+    case Report::Stages: return "stages";
+  }
+  return "?";
+}
 
 std::string_view rendererName(RendererId renderer) {
   switch (renderer) {

@@ -108,6 +108,19 @@ using StreamFactory = std::unique_ptr<GpuTraversal> (*)(std::span<const Triangle
 enum class RayGrouping { None, Tiles, Generation };
 std::string_view rayGroupingName(RayGrouping grouping);  // "none", "tiles", "generation"
 
+// The benchmark reports that run a chosen few rows rather than every one:
+// the scaling report (issue 36, scripts/bench_scale.py: the fastest CPU and
+// stream rows and the baseline) and the fragment/compute stage table
+// (issue 38, scripts/bench_stages.py and scripts/gpu_server/). A row says
+// which feature it, on which renderer; the scripts read it from
+// --list --json's "featured".
+enum class Report { Scale, Stages };
+std::string_view reportName(Report report);  // "scale", "stages"
+struct Featured {
+  Report report;
+  RendererId renderer;
+};
+
 struct Structure {
   std::string_view name;         // -a NAME; also AccelStats::name of what it builds
   std::string_view family;       // its folder: accel/<family>/, kernels_glsl/<family>/
@@ -142,6 +155,8 @@ struct Structure {
   ConeFactory cone = nullptr;
   // --cone with -r 2: the kd-tree the stream cone kernel walks (render/gpu_cone_tracer.h); null = none.
   ConeStreamFactory coneStream = nullptr;
+  // The reports that feature this row (above); each renderer is one the row runs on.
+  std::vector<Featured> featured = {};
 
   bool runsOn(RendererId r) const { return renderers.has(r); }
   // The parameters a run of this structure on `renderer` reads.

@@ -43,13 +43,18 @@ nlohmann::json catalogJson(const std::filesystem::path& realScenesDir) {
   nlohmann::json renderers = nlohmann::json::array();
   for (RendererId r : kRenderers) renderers.push_back({{"name", rendererName(r)}, {"id", int(r)}});
   nlohmann::json accelerators = nlohmann::json::array();
-  for (const Structure& s : structures())
+  for (const Structure& s : structures()) {
+    nlohmann::json featured = nlohmann::json::array();
+    for (const Featured& f : s.featured)
+      featured.push_back({{"report", reportName(f.report)}, {"renderer", rendererName(f.renderer)}});
     accelerators.push_back({{"name", s.name},
                             {"renderers", rendererNames(s)},
                             {"number", s.number ? nlohmann::json(*s.number) : nlohmann::json(nullptr)},
                             {"cpu_ray_groups", s.runsOn(RendererId::Cpu) ? nlohmann::json(rayGroupingName(s.cpuRayGrouping))
                                                                           : nlohmann::json(nullptr)},
+                            {"featured", featured},
                             {"description", s.description}});
+  }
   nlohmann::json scenes = nlohmann::json::array();
   for (const auto& [name, number] : sceneRows(realScenesDir)) scenes.push_back({{"name", name}, {"number", number}});
   return {{"version", kVersion}, {"renderers", renderers}, {"accelerators", accelerators}, {"scenes", scenes}};

@@ -16,11 +16,11 @@ minimum of `-m 2` frames:
           otherwise), and the small scenes issue 36's goal also names (bunny,
           and BART's kitchen and robots where the BART scenes are found);
           --no-real-scenes leaves the sphere fields only;
-  rows    the fastest CPU rows (bvh8-packet, bvh8 on -r 1), Embree (-r 3) and
-          the fastest stream rows (bvh-octant-fused, kk-bvh on -r 2, at
-          passtrace's default -l 0, one pass per bounce); the names are checked
-          against `passtrace --list --json` and a missing one is skipped with a
-          note;
+  rows    those the registry features in this report (`passtrace --list
+          --json`, "featured": "scale"): the fastest CPU rows (-r 1), Embree
+          (-r 3) and the fastest and the most compact stream rows (-r 2, at
+          passtrace's default -l 0, one pass per bounce); a renderer with none
+          in this build (Embree without libembree) is named in a note;
   bare    on every scene (the measurement tools take the spheres of N
           triangles as SCENE spheres:N): bare Embree rtcIntersect1 and
           rtcIntersect16 packets over the CPU renderer's primary rays on 2
@@ -67,7 +67,7 @@ import time
 import bench_ranks
 import bench_report
 from bench_report import write_atomically
-from passtrace_registry import scene_available
+from passtrace_registry import featured, scene_available
 from report_tables import field, md_table, num
 
 # 10^5 to 10^8, and 5 M and 20 M, where issue 36 sets its goal against Embree.
@@ -76,9 +76,8 @@ REAL_SCENES = ["dragon", "conference", "sibenik"]
 # The small scenes where issue 36 asks the fastest CPU row to stay ahead too.
 GOAL_SCENES = ["bunny", "kitchen", "robots"]
 BART_SCENES = {"kitchen", "robots"}  # need the BART scenes (bench.py's --bart-dir)
-# The rows: (name, renderer) in the report's order. The fastest CPU and stream
-# rows of the speed report (docs/bench-speed/REPORT.md) and Embree.
-ROWS = [("bvh8-packet", "cpu"), ("bvh8", "cpu"), ("embree", "embree"), ("bvh-octant-fused", "gpu"), ("kk-bvh", "gpu")]
+# The rows come from the registry (featured in "scale"), grouped by renderer in this order.
+RENDERER_ORDER = ["cpu", "embree", "gpu"]
 RENDERER_IDS = {"cpu": "1", "gpu": "2", "embree": "3"}
 RENDERER_TITLES = {"cpu": "-r 1", "gpu": "-r 2", "embree": "-r 3"}
 AO_SAMPLES = 4  # as measure_ray_kinds traces them
@@ -127,9 +126,9 @@ class Plan:
 
     def __init__(self, registry, binary, sizes, named, size, rounds, kinds, bart_ok=True):
         self.size, self.rounds, self.kinds = size, rounds, kinds
-        known = {a["name"]: a["renderers"] for a in registry["accelerators"]}
-        self.rows = [(n, r) for n, r in ROWS if n in known and r in known[n]]
-        self.missing = [f"{n} ({RENDERER_TITLES[r]})" for n, r in ROWS if (n, r) not in self.rows]
+        self.rows = sorted(featured(registry, "scale"), key=lambda row: RENDERER_ORDER.index(row[1]))
+        self.missing = [RENDERER_TITLES[r] for r in RENDERER_ORDER
+                        if not any(renderer == r for _, renderer in self.rows)]
         self.skipped = []
         self.scenes = []  # (label, scene args, requested triangles or None, tool scene name or None)
         for n in sizes:
@@ -688,7 +687,7 @@ def write_report(out_dir, results, records, plan):
         f"{', '.join(p['named_scenes']) or 'none (--no-real-scenes or --scenes)'}. Named scenes skipped (passtrace "
         f"did not find them: --scenes-dir, $PASSTRACE_SCENES_DIR, ../shared/scenes/real; or kitchen and robots "
         f"without the BART scenes): {', '.join(results['skipped']) or 'none'}. Rows missing from this build: "
-        f"{', '.join(results['missing']) or 'none'}.", "",
+        f"{', '.join(results['missing']) or 'none'} (no row featured on that renderer).", "",
         "Columns: B/tri structure is `structure_bytes` (nodes and references as the traversal stores them; "
         "Embree reports none) over the triangles; † where a row reports no `structure_bytes` (0), its "
         "`accel_floats_per_triangle` × 4 instead (the thesis's Table 3 accounting: nodes and lists, the "
@@ -821,7 +820,7 @@ def main(args, binary, registry, out, bart, bart_ok, bench, command):
                                                       "passtrace did not find the real scenes (give --scenes-dir or "
                                                       "$PASSTRACE_SCENES_DIR, or put them in ../shared/scenes/real)"))
     for r in plan.missing:
-        bench.log(f"bench --scale: skipping {r}: not in this passtrace's registry (`passtrace --list`)")
+        bench.log(f"bench --scale: no {r} row: this passtrace's registry features none (`passtrace --list --json`)")
     if plan.tools_missing:
         bench.log(f"bench --scale: no bare Embree: {', '.join(plan.tools_missing)} not built")
     runner = Runner(bench, binary, out, args.timeout or 1800, args.force, real_scenes_dir(args), bart)

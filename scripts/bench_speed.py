@@ -384,8 +384,7 @@ def main(args, binary, registry, out, bart, bart_ok, bench, command):
             "machine": {}, "embree": {}, "errors": ["no results.json with baselines"]}
     else:
         baselines = measure_baselines(binary, scenes, size, repeats, bart, bart_ok, bench)
-        baselines["stages"] = bench_stages.measure(binary, scenes[0], size, repeats,
-                                                   [a["name"] for a in registry["accelerators"]], bench.log)
+        baselines["stages"] = bench_stages.measure(binary, scenes[0], size, repeats, registry, bench.log)
     # Always rerun (unless --report-only): the ratios against the baselines hold only within one run.
     # The stream rows at passtrace's default -l 0: one pass per bounce (issue 17's tuned loop limit).
     runner = bench.Runner(binary, bart, out, args.timeout or 900, True, loop_limit=None)

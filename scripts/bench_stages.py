@@ -13,18 +13,23 @@ import subprocess
 import tempfile
 
 import bench_ranks
+from passtrace_registry import featured
 
-# The rows the stage comparison runs: the fastest stream rows of the speed
-# report (bvh-octant-fused, bvh-octant, kk-bvh, gs-bvh on the bunny).
-STAGE_ROWS = ("bvh-octant-fused", "bvh-octant", "kk-bvh", "gs-bvh")
+# The rows the stage comparison runs are those the registry features in
+# "stages" (--list --json): the fastest stream rows of the speed report.
 STAGES = ("fragment", "compute")
 ROUNDS = 3
 GPU_DIR = pathlib.Path(__file__).resolve().parent.parent / "docs" / "bench-speed"
 
 
-def measure(binary, scene, size, repeats, registry_rows, log):
+def stage_rows(registry):
+    """The stream rows the registry features in the stage comparison, in registry order."""
+    return [name for name, renderer in featured(registry, "stages") if renderer == "gpu"]
+
+
+def measure(binary, scene, size, repeats, registry, log):
     """{"runs": {row: {stage: [frame_ms per round]}}, "probe": {...} or None, "errors": [...]}"""
-    rows = [r for r in STAGE_ROWS if r in registry_rows]
+    rows = stage_rows(registry)
     out = {"scene": scene, "size": size, "repeats": repeats, "runs": {r: {s: [] for s in STAGES} for r in rows},
            "errors": []}
     with tempfile.TemporaryDirectory() as tmp:
@@ -96,8 +101,10 @@ def section(stages, num, md_table):
         by = {(r["scene"], r["row"], r["stage"]): r.get("mrays_per_s") for r in runs
               if r.get("mix") == "primary" and "error" not in r}
         rows = []
+        # The rows of this run's stage table, else every row of the GPU run.
+        shown = list(stages["runs"]) if stages else list(dict.fromkeys(r["row"] for r in runs))
         for scene in dict.fromkeys(r["scene"] for r in runs):
-            for row in STAGE_ROWS:
+            for row in shown:
                 f, c = by.get((scene, row, "fragment")), by.get((scene, row, "compute"))
                 if f is None and c is None:
                     continue

@@ -89,3 +89,10 @@ def build_flags(structure, grid_multiplier=None, kd_depth=None):
     if structure.startswith("kd-") and kd_depth is not None:
         return ["-d", str(kd_depth)]
     return []
+
+
+def featured(registry, report):
+    """[(name, renderer)] of the rows the benchmark REPORT runs ("scale",
+    "stages"): the registry's `featured`, in registry order."""
+    return [(a["name"], f["renderer"]) for a in registry["accelerators"] for f in a.get("featured", [])
+            if f["report"] == report]

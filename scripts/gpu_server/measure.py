@@ -88,35 +88,35 @@ class Tools:
 
 
 def stream_rows(tools):
+    """(every stream row, those the registry features in the stage table), in registry order."""
     status, out, err = tools.run([str(tools.passtrace), "--list", "--json"], 60)
     if status != 0:
         sys.exit(f"measure.py: {tools.passtrace} --list --json: {err}")
-    return [r["name"] for r in json.loads(out)["accelerators"] if "gpu" in r["renderers"]]
+    rows = [r for r in json.loads(out)["accelerators"] if "gpu" in r["renderers"]]
+    featured = [r["name"] for r in rows if {"report": "stages", "renderer": "gpu"} in r.get("featured", [])]
+    return [r["name"] for r in rows], featured
 
 
-# On the big scene, the rows whose builds are quickest and whose traversals
-# were fastest on the GPU before (docs/bench-speed/GPU.md) come first.
-BIG_SCENE_FIRST = ("kk-bvh", "bvh-stack", "bvh-octant-fused", "gs-bvh", "bvh-octant")
-
-
-def scenes(args, tools, rows):
-    """(label, passtrace scene arguments, rows in order) in priority order."""
+def scenes(args, tools, rows, first):
+    """(label, passtrace scene arguments, rows in order) in priority order. On
+    the big scene the stage table's rows (FIRST: the fastest stream rows)
+    come first, so that a run cut short by the device time still has them."""
     if args.tiny:
         return [("cornell", ["-s", "cornell"], rows), ("spheres 2K", ["-s", "spheres", "--triangles", "2000"], rows)]
     found = [("bunny", ["-s", "bunny"], rows)]
     if (tools.bart / "kitchen").is_dir():
         found.append(("kitchen", ["-s", "kitchen"], rows))
     millions = args.big_triangles / 1e6
-    big = [r for r in BIG_SCENE_FIRST if r in rows] + [r for r in rows if r not in BIG_SCENE_FIRST]
+    big = [r for r in first if r in rows] + [r for r in rows if r not in first]
     found.append((f"spheres {millions:g}M", ["-s", "spheres", "--triangles", str(args.big_triangles)], big))
     return [f for f in found if not args.scenes or f[0].split()[0] in args.scenes]
 
 
-def measure_runs(args, tools, rows, deadline, out):
+def measure_runs(args, tools, rows, first, deadline, out):
     width, height = args.size.split("x")
     runs = []
     with open(out / "runs.jsonl", "w") as log, tempfile.TemporaryDirectory() as tmp:
-        for label, scene, scene_rows in scenes(args, tools, rows):
+        for label, scene, scene_rows in scenes(args, tools, rows, first):
             for row in scene_rows:
                 for mix, flags in MIXES.items():
                     for stage in STAGES:  # the two stages of one row and mix run back to back
@@ -275,13 +275,14 @@ def main():
             target.parent.mkdir(parents=True, exist_ok=True)
             target.write_bytes(tools.bunny.read_bytes())
     args.out.mkdir(parents=True, exist_ok=True)
-    rows = args.rows or stream_rows(tools)
+    rows, first = stream_rows(tools)
+    rows = args.rows or rows
 
     status, stdout, err = tools.run([str(tools.probe), "4096" if not args.tiny else "64"], 60)
     probe = json.loads(stdout) if status == 0 else {"error": err or f"exit status {status}"}
     (args.out / "sm_probe.json").write_text(json.dumps(probe, indent=1) + "\n")
 
-    runs = measure_runs(args, tools, rows, deadline - args.gl_seconds, args.out)
+    runs = measure_runs(args, tools, rows, first, deadline - args.gl_seconds, args.out)
     gl = {} if args.no_gl_tests else gl_tests(args, tools, deadline, args.out)
     print(table(args, probe, runs, gl, rows, args.out), end="")
     print(f"measure.py: {time.monotonic() - start:.0f} s", file=sys.stderr)

@@ -55,7 +55,8 @@ TEST_F(Cli, ListJsonFollowsTheContractAndTheRegistry) {
     const Structure& s = structures()[i];
     const nlohmann::json& a = accelerators[i];
     SCOPED_TRACE(std::string(s.name));
-    EXPECT_EQ(keysOf(a), (std::set<std::string>{"name", "renderers", "number", "cpu_ray_groups", "description"}));
+    EXPECT_EQ(keysOf(a),
+              (std::set<std::string>{"name", "renderers", "number", "cpu_ray_groups", "featured", "description"}));
     EXPECT_EQ(a["name"], s.name);
     nlohmann::json on = nlohmann::json::array();
     for (RendererId renderer : kRenderers)
@@ -65,6 +66,10 @@ TEST_F(Cli, ListJsonFollowsTheContractAndTheRegistry) {
     EXPECT_EQ(a["description"], s.description);
     EXPECT_EQ(a["cpu_ray_groups"], s.runsOn(RendererId::Cpu) ? nlohmann::json(rayGroupingName(s.cpuRayGrouping))
                                                               : nlohmann::json(nullptr));
+    nlohmann::json featured = nlohmann::json::array();
+    for (const Featured& f : s.featured)
+      featured.push_back({{"report", reportName(f.report)}, {"renderer", rendererName(f.renderer)}});
+    EXPECT_EQ(a["featured"], featured);
   }
 
   // The built-in scenes by name and thesis number, and the procedural one; no real scene.

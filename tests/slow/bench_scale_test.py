@@ -59,10 +59,9 @@ def main():
     import bench_scale
     import passtrace_registry
     registry = passtrace_registry.load(args.binary)
-    known = {a["name"]: a["renderers"] for a in registry["accelerators"]}
-    rows = [(n, r) for n, r in bench_scale.ROWS if n in known and r in known[n]]
-    check(("bvh8-packet", "cpu") in rows and ("kk-bvh", "gpu") in rows,
-          f"the registry has the scaling benchmark's CPU and stream rows ({rows})")
+    rows = passtrace_registry.featured(registry, "scale")
+    check({"cpu", "gpu"} <= {r for _, r in rows},
+          f"the registry features CPU and stream rows in the scaling benchmark ({rows})")
     help_text = subprocess.run([args.binary, "--help"], capture_output=True, text=True).stdout
     kinds = [k for k in bench_scale.KINDS if k != "ao" or "--shading" in help_text]
     labels = [f"spheres-{bench_scale.tri_label(n)}" for n in SIZES]

@@ -6,6 +6,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "accel/registry.h"
 #include "tests/test_meshes.h"
@@ -27,6 +28,32 @@ TEST(Registry, NamesAreUniqueAndEachRowHasItsFactories) {
     if (s.stream) { EXPECT_NE(s.mirror, nullptr) << s.name << ": a stream structure needs its kernel's CPU mirror"; }
     EXPECT_EQ(s.number.has_value(), s.numberedOn.bits != 0) << s.name;
   }
+}
+
+// The reports that run a chosen few rows read them from the registry: each
+// names a renderer the row runs on, once, and each report has what its
+// tables compare (the scaling report: a CPU row, a stream row and, where
+// Embree is built, the baseline; the stage table: stream rows).
+TEST(Registry, FeaturedRowsRunWhereTheyAreFeatured) {
+  std::set<std::pair<Report, RendererId>> found;
+  bool embree = false;
+  for (const Structure& s : structures()) {
+    embree = embree || s.runsOn(RendererId::Embree);
+    std::set<std::pair<Report, RendererId>> own;
+    for (const Featured& f : s.featured) {
+      EXPECT_TRUE(s.runsOn(f.renderer)) << s.name << " featured in " << reportName(f.report) << " on "
+                                        << rendererName(f.renderer);
+      EXPECT_TRUE(own.insert({f.report, f.renderer}).second) << s.name << ": featured twice alike";
+      EXPECT_TRUE(f.report != Report::Stages || f.renderer == RendererId::Gpu) << s.name;
+      found.insert({f.report, f.renderer});
+    }
+  }
+  EXPECT_TRUE(found.count({Report::Scale, RendererId::Cpu}));
+  EXPECT_TRUE(found.count({Report::Scale, RendererId::Gpu}));
+  EXPECT_EQ(found.count({Report::Scale, RendererId::Embree}), embree ? 1u : 0u);
+  EXPECT_TRUE(found.count({Report::Stages, RendererId::Gpu}));
+  EXPECT_EQ(reportName(Report::Scale), "scale");
+  EXPECT_EQ(reportName(Report::Stages), "stages");
 }
 
 // Thesis Table 4: the CPU and GPU columns number different structures.
