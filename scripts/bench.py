@@ -61,7 +61,7 @@ import passtrace_registry  # noqa: E402
 from bench_report import write_atomically  # noqa: E402
 
 SCENES = ["cows", "robots", "kitchen", "bunny", "cornell"]
-BART_SCENES = {"robots", "kitchen"}
+BART_SCENES = passtrace_registry.BART_SCENES
 RENDERERS = ["gpu", "cpu", "embree"]
 
 # Thesis 10.2: per-scene parameters. Cows have the one mirror (3 traces per
@@ -437,7 +437,7 @@ def build_jobs(plan, runner, bart_ok):
     """[(kind, meta, args, record_path, extra_args, extra_files)] in execution order."""
     jobs, skipped_scenes = [], []
     for scene in plan.scenes:
-        if (scene in BART_SCENES and not bart_ok) or not passtrace_registry.scene_available(plan.registry, scene):
+        if not passtrace_registry.scene_available(plan.registry, scene, bart_ok):
             skipped_scenes.append(scene)
             continue
         for renderer in ("gpu", "cpu", "embree"):

@@ -67,7 +67,7 @@ import time
 import bench_ranks
 import bench_report
 from bench_report import write_atomically
-from passtrace_registry import featured, scene_available
+from passtrace_registry import BART_SCENES, featured, scene_available
 from report_tables import field, md_table, num
 
 # 10^5 to 10^8, and 5 M and 20 M, where issue 36 sets its goal against Embree.
@@ -75,7 +75,6 @@ DEFAULT_TRIANGLES = [100_000, 1_000_000, 5_000_000, 10_000_000, 20_000_000, 100_
 REAL_SCENES = ["dragon", "conference", "sibenik"]
 # The small scenes where issue 36 asks the fastest CPU row to stay ahead too.
 GOAL_SCENES = ["bunny", "kitchen", "robots"]
-BART_SCENES = {"kitchen", "robots"}  # need the BART scenes (bench.py's --bart-dir)
 # The rows come from the registry (featured in "scale"), grouped by renderer in this order.
 RENDERER_ORDER = ["cpu", "embree", "gpu"]
 RENDERER_IDS = {"cpu": "1", "gpu": "2", "embree": "3"}
@@ -136,7 +135,7 @@ class Plan:
             self.scenes.append((f"spheres-{tri_label(n)}", ["-s", "spheres", "--triangles", str(n)], n,
                                 f"spheres:{n}"))
         for s in named:
-            if scene_available(registry, s) and (bart_ok or s not in BART_SCENES):
+            if scene_available(registry, s, bart_ok):
                 self.scenes.append((s, ["-s", s], None, s))
             else:
                 self.skipped.append(s)

@@ -36,8 +36,14 @@ def load(binary):
 REAL_SCENES = ["conference", "sibenik", "sponza", "teapot", "dragon"]
 
 
-def scene_available(registry, label):
-    """False only for a real scene the binary did not find."""
+# The BART scenes: they need the BART folder (bench.py's --bart-dir).
+BART_SCENES = {"robots", "kitchen"}
+
+
+def scene_available(registry, label, bart_ok=True):
+    """False only for a real scene the binary did not find, or a BART scene without the BART folder."""
+    if label in BART_SCENES:
+        return bart_ok
     return label not in REAL_SCENES or any(s["name"] == label for s in registry.get("scenes", []))
 
 

@@ -150,6 +150,13 @@ def main():
             lines = proc.stderr.strip().splitlines()
             check(proc.returncode != 0 and len(lines) == 1 and "--triangles-list" in lines[0]
                   and not bad_out.exists(), f"--triangles-list {bad}: one line, exit {proc.returncode}: {lines}")
+        # An unknown scene: one line naming it and the valid ones, no output folder.
+        bad_out = pathlib.Path(work) / "bad_scene"
+        proc = subprocess.run([sys.executable, str(BENCH), "--scale", "--scenes", "spheres,atlantis", "--out",
+                               str(bad_out), "--binary", str(args.binary)], capture_output=True, text=True, timeout=60)
+        lines = proc.stderr.strip().splitlines()
+        check(proc.returncode != 0 and len(lines) == 1 and "'atlantis'" in lines[0] and "kitchen" in lines[0]
+              and not bad_out.exists(), f"--scenes atlantis: one line, exit {proc.returncode}: {lines}")
     return summary()
 
 
