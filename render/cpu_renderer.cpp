@@ -113,111 +113,147 @@ uint64_t CpuRenderer::traceGeneration(std::vector<PathState>& paths, std::vector
   return count;
 }
 
-// Packets of neighbouring pixels, written straight from the camera and the
-// paths: primary rays in 8x4 tiles, one packet of 32 each (the fastest of
-// 4x2, 4x4 and 8x4 on bunny, Kitchen and Robots; a common origin); later
-// generations in 8x8 tiles, the shadow rays as one packet of up to 64 (a
-// common end at the light; against 16 and 32 per packet, 64 took the least
-// CPU time on Robots); mirror rays one at a time, where packets would mostly
-// carry dead lanes.
-uint64_t CpuRenderer::tracePackets(std::vector<PathState>& paths, std::vector<Hit>& hits, const Generation& g,
-                                   int height) const {
-  const bool primary = g.basis != nullptr;
-  const int width = g.width;
-  constexpr size_t kTileW = 8, kTile = kTileW * 8;
+// Packet rows, frames of two or more generations: each group of 8x8 tiles is
+// traced generation after generation to its end before the next group, its
+// paths kept in the thread's scratch (under 60 KB, in the L2 cache) instead of
+// a frame-wide array of 112-byte path states, which every generation walked
+// again from memory (29 MB at 512²; with shadow rays on the bunny the renderer
+// around the traversal then took more samples than the traversal itself:
+// docs/bench-speed/NOTES.md). Each pixel's rays, shading and counts are the
+// same as generation by generation over the whole frame, so are its bits.
+// Primary rays go as two 8x4 packets per tile (the fastest of 4x2, 4x4 and
+// 8x4 on bunny, Kitchen and Robots; a common origin); shadow and AO rays as
+// one packet of up to 64 per tile (a common end at the light; against 16 and
+// 32 per packet, 64 took the least CPU time on Robots); mirror rays one at a
+// time, where packets would mostly carry dead lanes.
+CpuRenderer::Traced CpuRenderer::traceTileGroups(const CameraBasis& basis, int width, int height, int generations,
+                                                 int bounces, bool captureHits, const RowBands& rows,
+                                                 std::vector<WhittedStack>& stacks, std::vector<Hit>& hits,
+                                                 FrameResult& pixels) const {
+  constexpr size_t kTileW = 8, kTileH = 8, kTile = kTileW * kTileH, kHalfRows = kTileH / 2;
   static_assert(kTile <= size_t(RayPacket::kMax), "a tile's shadow rays are one packet");
-  // 8x8 primary tiles measured up to 1.2x slower (noisy; not kept).
-  const TileGrid grid(kTileW, primary ? 4 : 8, width, height);
-  std::atomic<uint64_t> active{0};
+  const TileGrid grid(kTileW, kTileH, width, height);
+  std::atomic<uint64_t> rays{0};
+  std::atomic<int> passes{0};
+  std::mutex statsLock;
   const size_t tileGroup = std::clamp<size_t>(size_t(accelerator_.packetsAtOnce()), 1, kTileGroup);
   parallelFor(grid.count(), std::max<size_t>(tileGroup, 256 / kTile), threads_, [&](size_t begin, size_t end) {
-    uint64_t count = 0;
-    // Per tile of the group: its hits, its pixels row by row, its closest-hit
-    // (primary) and shadow packets and each packet's pixels, hits and counts.
-    // The thread's own, made once: made per work item, their 70 KB cost 10 %
-    // of a bunny frame.
+    // Per tile of the group: its paths and their pixels row by row and hits;
+    // per packet (two per tile for primary rays, one later) its rays, the
+    // tile's paths it carries, its hits and counts. The thread's own, made
+    // once: made per work item, scratch like this cost 10 % of a bunny frame.
     struct Scratch {
+      PathState paths[kTileGroup][kTile];
       Hit tileHits[kTileGroup][kTile];
       size_t pixel[kTileGroup][kTile];
       size_t pixels[kTileGroup];
-      RayPacket packets[2][kTileGroup];
-      uint8_t members[2][kTileGroup][kTile];
-      Hit packetHits[2][kTileGroup][kTile];
-      RayStats packetStats[2][kTileGroup][kTile];
-      PacketJob jobs[2][kTileGroup];
+      RayPacket packets[2 * kTileGroup];
+      uint8_t members[2 * kTileGroup][kTile];
+      Hit packetHits[2 * kTileGroup][kTile];
+      RayStats packetStats[2 * kTileGroup][kTile];
+      PacketJob jobs[2 * kTileGroup];
     };
     thread_local Scratch scratch;
-    auto& [tileHits, pixel, pixels, packets, members, packetHits, packetStats, jobs] = scratch;
+    auto& [paths, tileHits, pixel, pixelCount, packets, members, packetHits, packetStats, jobs] = scratch;
+    FrameStats counts;  // this work item's share of the frame's sums and maxima
+    uint64_t traced = 0;
+    int deepest = 0;
     for (size_t first = begin; first < end; first += tileGroup) {
       const size_t group = std::min(tileGroup, end - first);
-      for (size_t t = 0; t < group; ++t) {
-        const TileGrid::Tile tile = grid[first + t];
-        const size_t x0 = tile.x0, y0 = tile.y0;
-        size_t n = 0;
-        packets[0][t].count = packets[1][t].count = 0;
-        float screenX[kTileW] = {}, dirX[kTileW], dirY[kTileW], dirZ[kTileW];
-        if (primary)
-          for (size_t x = x0; x < x0 + tile.columns; ++x) screenX[x - x0] = cameraScreenX(*g.basis, int(x));
-        for (size_t y = y0; y < y0 + tile.rows; ++y) {
-          if (primary) cameraDirections(*g.basis, screenX, cameraScreenY(*g.basis, int(y)), dirX, dirY, dirZ);
-          for (size_t x = x0; x < x0 + tile.columns; ++x) {
-            const size_t j = n++;
-            pixel[t][j] = y * size_t(width) + x;
-            PathState& path = paths[pixel[t][j]];
-            if (primary) {  // field by field: a whole-Ray copy reloads it across its partial stores
-              path.ray.origin = g.basis->eye;
-              path.ray.direction = glm::vec3(dirX[x - x0], dirY[x - x0], dirZ[x - x0]);
-              path.ray.tMax = kInfinity;
+      for (int bounce = 1; bounce <= generations; ++bounce) {
+        const bool primary = bounce == 1;
+        const Generation g{primary ? &basis : nullptr, width, epsilon_, bounce == bounces, bounces, aoLength_,
+                           &stacks, primary && captureHits, &rows};
+        const size_t packetSlots = primary ? 2 * group : group;
+        for (size_t s = 0; s < packetSlots; ++s) packets[s].count = 0;
+        uint64_t active = 0;
+        for (size_t t = 0; t < group; ++t) {
+          if (primary) {  // the tile's paths start: camera rays, row by row
+            const auto [x0, y0, columns, tileRows] = grid[first + t];
+            float screenX[kTileW] = {}, dirX[kTileW], dirY[kTileW], dirZ[kTileW];
+            for (size_t x = 0; x < columns; ++x) screenX[x] = cameraScreenX(basis, int(x0 + x));
+            size_t n = 0;
+            for (size_t y = 0; y < tileRows; ++y) {
+              cameraDirections(basis, screenX, cameraScreenY(basis, int(y0 + y)), dirX, dirY, dirZ);
+              RayPacket& packet = packets[2 * t + (y >= kHalfRows)];
+              for (size_t x = 0; x < columns; ++x, ++n) {
+                pixel[t][n] = (y0 + y) * size_t(width) + x0 + x;
+                PathState& path = paths[t][n];
+                path = PathState{};
+                path.ray = Ray{basis.eye, glm::vec3(dirX[x], dirY[x], dirZ[x]), kInfinity};
+                members[2 * t + (y >= kHalfRows)][packet.count] = uint8_t(n);
+                packet.push(path.ray);
+              }
             }
+            pixelCount[t] = n;
+            active += n;
+            continue;
+          }
+          for (size_t j = 0; j < pixelCount[t]; ++j) {
+            PathState& path = paths[t][j];
             if (path.kind == RayKind::None) continue;
-            ++count;
-            const int shadow = path.kind == RayKind::Shadow;
-            if (!shadow && !primary) {
+            ++active;
+            if (path.kind != RayKind::Shadow) {  // a mirror or refraction ray: alone
               RayStats stats;
               tileHits[t][j] = accelerator_.intersect(path.ray, false, &stats);
               path.steps += stats.steps;
               path.triangleTests += stats.triangleTests;
               continue;
             }
-            RayPacket& packet = packets[shadow][t];
-            members[shadow][t][packet.count] = uint8_t(j);
-            packet.push(path.ray);
+            members[t][packets[t].count] = uint8_t(j);
+            packets[t].push(path.ray);
           }
         }
-        pixels[t] = n;
-      }
-      for (int shadow = 0; shadow < 2; ++shadow) {
+        if (active == 0) break;  // shading paths without rays would change nothing
+        traced += active;
+        deepest = std::max(deepest, bounce);
         size_t jobCount = 0;
-        for (size_t t = 0; t < group; ++t) {
-          const size_t m = size_t(packets[shadow][t].count);
+        for (size_t s = 0; s < packetSlots; ++s) {
+          const size_t m = size_t(packets[s].count);
           if (m == 0) continue;
-          std::fill_n(packetStats[shadow][t], m, RayStats{});
-          jobs[shadow][jobCount++] = PacketJob{&packets[shadow][t], packetHits[shadow][t], packetStats[shadow][t]};
+          std::fill_n(packetStats[s], m, RayStats{});
+          jobs[jobCount++] = PacketJob{&packets[s], packetHits[s], packetStats[s]};
         }
-        if (jobCount > 0) accelerator_.tracePackets(std::span<const PacketJob>(jobs[shadow], jobCount), shadow != 0);
-        for (size_t t = 0; t < group; ++t)
-          for (size_t k = 0; k < size_t(packets[shadow][t].count); ++k) {
-            const uint8_t j = members[shadow][t][k];
-            PathState& path = paths[pixel[t][j]];
-            tileHits[t][j] = packetHits[shadow][t][k];
-            path.steps += packetStats[shadow][t][k].steps;
-            path.triangleTests += packetStats[shadow][t][k].triangleTests;
+        if (jobCount > 0) accelerator_.tracePackets(std::span<const PacketJob>(jobs, jobCount), !primary);
+        for (size_t s = 0; s < packetSlots; ++s) {
+          const size_t t = primary ? s / 2 : s;
+          for (size_t k = 0; k < size_t(packets[s].count); ++k) {
+            const uint8_t j = members[s][k];
+            tileHits[t][j] = packetHits[s][k];
+            paths[t][j].steps += packetStats[s][k].steps;
+            paths[t][j].triangleTests += packetStats[s][k].triangleTests;
           }
-      }
-      // Shaded while the tiles' paths are still in the cache; the hit
-      // triangles' shading data is fetched for a whole tile first, so that
-      // its cache misses overlap instead of stalling one pixel at a time.
-      for (size_t t = 0; t < group; ++t) {
-        for (size_t j = 0; j < pixels[t]; ++j) prefetchShading(tileHits[t][j]);
-        for (size_t j = 0; j < pixels[t]; ++j) {
-          shade(g, pixel[t][j], tileHits[t][j], paths[pixel[t][j]]);
-          if (g.keepHits) hits[pixel[t][j]] = tileHits[t][j];
+        }
+        // The hit triangles' shading data is fetched for a whole tile first,
+        // so that its cache misses overlap instead of stalling one pixel at a time.
+        for (size_t t = 0; t < group; ++t) {
+          for (size_t j = 0; j < pixelCount[t]; ++j) prefetchShading(tileHits[t][j]);
+          for (size_t j = 0; j < pixelCount[t]; ++j) {
+            shade(g, pixel[t][j], tileHits[t][j], paths[t][j]);
+            if (g.keepHits) hits[pixel[t][j]] = tileHits[t][j];
+          }
         }
       }
+      for (size_t t = 0; t < group; ++t)
+        for (size_t j = 0; j < pixelCount[t]; ++j) {
+          const PathState& path = paths[t][j];
+          const size_t p = pixel[t][j];
+          float* rgb = pixels.rgb.data() + 3 * p;
+          rgb[0] = path.color.r, rgb[1] = path.color.g, rgb[2] = path.color.b;
+          pixels.steps[p] = float(path.steps);
+          FrameStats one;
+          one.steps = one.maxStepsPerRay = path.steps;
+          one.triangleTests = one.maxTriangleTestsPerRay = path.triangleTests;
+          addPixelCounts(counts, one);
+        }
     }
-    active += count;
+    rays += traced;
+    for (int seen = passes.load(); seen < deepest && !passes.compare_exchange_weak(seen, deepest);) {
+    }
+    const std::lock_guard<std::mutex> hold(statsLock);
+    addPixelCounts(pixels.stats, counts);
   });
-  return active;
+  return Traced{rays.load(), passes.load()};
 }
 
 // The speed runs' frame, primary rays only with the thesis's shading (-b 1):
@@ -326,62 +362,67 @@ FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height,
   const bool thesis = shading_.mode == ShadingMode::Thesis;
   const int generations = thesis ? bounces : std::numeric_limits<int>::max();
   const bool packets = accelerator_.packetSize() > 0, batch = !packets && accelerator_.tracesBatches();
-  // Packet rows shade a primary-only frame tile by tile and write its pixels
-  // straight out: no path state at all (tracePrimaryOnly).
-  const bool tilePixels = packets && generations == 1;
-  if (tilePixels) result.rgb.assign(3 * elements, 0.0f), result.steps.assign(elements, 0.0f);
-  std::vector<PathState> paths(tilePixels ? 0 : elements);
   std::vector<Hit> hits(packets && !captureHits ? 0 : elements);  // packet rows keep hits in the tile
-  BatchScratch scratch;
   std::vector<WhittedStack> stacks(shading_.mode == ShadingMode::Whitted ? elements : 0);
+  const auto frameMs = [](std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  };
+  const auto keepPrimaryHits = [&] {
+    result.primaryHits.reserve(elements);
+    for (const Hit& h : hits) result.primaryHits.push_back(hitRecordOf(h));
+  };
+
+  // Packet rows generate, trace and shade a group of tiles at a time and
+  // write its pixels straight out: no frame-wide path state at all.
+  if (packets) {
+    result.rgb.assign(3 * elements, 0.0f), result.steps.assign(elements, 0.0f);
+    const auto start = std::chrono::steady_clock::now();
+    const Traced traced =
+        generations == 1
+            ? Traced{tracePrimaryOnly(basis, width, height, captureHits ? &hits : nullptr, result), 1}
+            : traceTileGroups(basis, width, height, generations, bounces, captureHits, rows, stacks, hits, result);
+    result.stats.frameMs = frameMs(start);
+    result.stats.rays = traced.rays;
+    result.stats.passes = uint64_t(traced.passes);
+    if (captureHits) keepPrimaryHits();
+    return result;
+  }
+
+  // The batch path traces a whole generation at once, so it generates and
+  // shades in passes of their own; so do per-ray rows: in one pass, shading
+  // between traversals made bvh8 3 % slower than main (why: not measured);
+  // apart, 1.03-1.05x faster.
+  std::vector<PathState> paths(elements);
+  BatchScratch scratch;
   const auto start = std::chrono::steady_clock::now();
   std::chrono::steady_clock::duration excluded{};
-
-  // Packet rows generate, trace and shade a tile at a time. The batch path
-  // traces a whole generation at once, so it generates and shades in passes of
-  // their own; so do per-ray rows: in one pass, shading between traversals
-  // made bvh8 3 % slower than main (why: not measured); apart, 1.03-1.05x faster.
-  if (!packets)
-    parallelFor(elements, kGrain, threads_, [&](size_t begin, size_t end) {
-      for (size_t i = begin; i < end; ++i)
-        paths[i].ray = primaryRay(basis, int(i % size_t(width)), int(i / size_t(width)));
-    });
+  parallelFor(elements, kGrain, threads_, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) paths[i].ray = primaryRay(basis, int(i % size_t(width)), int(i / size_t(width)));
+  });
 
   for (int bounce = 1; bounce <= generations; ++bounce) {
-    const Generation g{bounce == 1 && packets ? &basis : nullptr, width, epsilon_, bounce == bounces, bounces,
-                       aoLength_, &stacks, bounce == 1 && captureHits, &rows};
+    const Generation g{nullptr, width, epsilon_, bounce == bounces, bounces, aoLength_, &stacks,
+                       bounce == 1 && captureHits, &rows};
     // Shading an element without a ray changes nothing (shadeWhitted pops a
     // pending ray only when it has one), so a generation that traced nothing
     // was shaded for nothing and the loop ends as before.
-    std::atomic<uint64_t> active{0};
-    if (tilePixels)
-      active = tracePrimaryOnly(basis, width, height, captureHits ? &hits : nullptr, result);
-    else if (packets)
-      active = tracePackets(paths, hits, g, height);
-    else if (batch)
-      active = traceGeneration(paths, hits, bounce == 1, width, height, result.stats, scratch);
-    else
-      active = traceRays(paths, hits);
+    const uint64_t active =
+        batch ? traceGeneration(paths, hits, bounce == 1, width, height, result.stats, scratch) : traceRays(paths, hits);
     if (active == 0) break;
     result.stats.rays += active;
     ++result.stats.passes;
 
     if (bounce == 1 && captureHits) {
       const auto pause = std::chrono::steady_clock::now();
-      result.primaryHits.reserve(elements);
-      for (const Hit& h : hits) result.primaryHits.push_back(hitRecordOf(h));
+      keepPrimaryHits();
       excluded += std::chrono::steady_clock::now() - pause;
     }
-
-    if (!packets)
-      parallelFor(elements, kGrain, threads_, [&](size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i) shade(g, i, hits[i], paths[i]);
-      });
+    parallelFor(elements, kGrain, threads_, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) shade(g, i, hits[i], paths[i]);
+    });
   }
-  result.stats.frameMs =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start - excluded).count();
+  result.stats.frameMs = frameMs(start) - std::chrono::duration<double, std::milli>(excluded).count();
 
-  if (tilePixels) return result;
   result.rgb.reserve(3 * elements);
   result.steps.reserve(elements);
   for (const PathState& p : paths) {

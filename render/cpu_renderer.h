@@ -1,9 +1,10 @@
 #pragma once
 // The CPU renderer (-r 1): the same rays, bounces and shading as the GPU
-// stream renderer, one wavefront per bounce over all pixels, traced through
-// any CpuAccelerator on all cores. Packet tracers generate, trace and shade
-// each tile in one pass over the paths per bounce: separate passes over the
-// 100-odd-byte path states stalled on cache misses.
+// stream renderer, traced through any CpuAccelerator on all cores. Per-ray
+// and batch tracers run one wavefront per bounce over all pixels; packet
+// tracers take a group of tiles through all its bounces at a time, its path
+// states in the cache: passes over a frame of 100-odd-byte path states
+// stalled on cache misses.
 
 #include <vector>
 
@@ -54,11 +55,18 @@ class CpuRenderer {
   uint64_t traceGeneration(std::vector<PathState>& paths, std::vector<Hit>& hits, bool primary, int width, int height,
                            FrameStats& frame, BatchScratch& scratch) const;
 
-  // One bounce through CpuAccelerator::tracePacket, 8x4 pixel tiles built
-  // from the paths' rays (generated here in the primary generation), each
-  // tile shaded right after; adds the stats to the paths; returns the rays traced.
-  uint64_t tracePackets(std::vector<PathState>& paths, std::vector<Hit>& hits, const Generation& g,
-                        int height) const;
+  // What a frame's tracing did: the rays traced and the generations that traced any.
+  struct Traced {
+    uint64_t rays;
+    int passes;
+  };
+  // A frame of two or more generations through CpuAccelerator::tracePackets:
+  // each group of 8x8 tiles from its camera rays to its last generation,
+  // shaded after each, its paths in the thread's scratch; `pixels` gets the
+  // colours, steps and counts, `hits` the primary hits if `captureHits`.
+  Traced traceTileGroups(const CameraBasis& basis, int width, int height, int generations, int bounces,
+                         bool captureHits, const RowBands& rows, std::vector<WhittedStack>& stacks,
+                         std::vector<Hit>& hits, FrameResult& pixels) const;
   // A whole frame of primary rays only (thesis shading, -b 1) through
   // CpuAccelerator::tracePacket, without path states: `pixels` gets the
   // colours, steps and counts, `hits` (if given) the hits; returns the rays traced.
