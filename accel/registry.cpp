@@ -193,8 +193,9 @@ std::vector<Structure> makeRows() {
        // --bvh8-builder sbvh 168 at 1 M and 134 at 4 M triangles.
        .memory = {.cpu = {168}}, .reads = {P::Bvh8Builder}, .featured = {{Report::Scale, Cpu}}},
       {.name = "bvh8-packet", .family = "wide_bvh",
-       .description = "bvh8 traced in packets of 32 rays (8x4 pixels) for primary and shadow rays; over trees "
-                      "larger than 16 MiB eight tiles' packets at once, taking turns to hide cache misses",
+       .description = "bvh8 traced in packets: primary rays 32 at a time (8x4 pixels), shadow and AO rays up to 64 "
+                      "(8x8); over trees larger than 16 MiB eight tiles' packets at once, taking turns to hide cache "
+                      "misses",
        .renderers = {Cpu}, .number = std::nullopt, .numberedOn = {},
        .cpu = makeBvh8PacketCpu,
        .memory = {.cpu = {168}}, .reads = {P::Bvh8Builder}, .cpuRayGrouping = RayGrouping::Tiles,  // as bvh8
