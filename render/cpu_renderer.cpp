@@ -46,6 +46,21 @@ void addPixelCounts(FrameStats& into, const FrameStats& counts) {
   into.maxTriangleTestsPerRay = std::max(into.maxTriangleTestsPerRay, counts.maxTriangleTestsPerRay);
 }
 
+// A finished pixel into the image: its colour, its steps (the heat map's
+// value) and its counts into `counts`, the caller's share of the frame's.
+// Packet rows write each tile's pixels as they finish, per-ray rows the whole
+// frame at the end; this is the one place that says what a pixel leaves.
+void writePixel(FrameResult& image, size_t pixel, const glm::vec3& color, uint64_t steps, uint64_t triangleTests,
+                FrameStats& counts) {
+  float* rgb = image.rgb.data() + 3 * pixel;  // not copy_n: that called memmove per pixel
+  rgb[0] = color.r, rgb[1] = color.g, rgb[2] = color.b;
+  image.steps[pixel] = float(steps);
+  counts.steps += steps;
+  counts.triangleTests += triangleTests;
+  counts.maxStepsPerRay = std::max(counts.maxStepsPerRay, steps);
+  counts.maxTriangleTestsPerRay = std::max(counts.maxTriangleTestsPerRay, triangleTests);
+}
+
 }  // namespace
 
 CpuRenderer::CpuRenderer(const Scene& scene, const CpuAccelerator& accelerator, unsigned threads,
@@ -237,14 +252,7 @@ CpuRenderer::Traced CpuRenderer::traceTileGroups(const CameraBasis& basis, int w
       for (size_t t = 0; t < group; ++t)
         for (size_t j = 0; j < pixelCount[t]; ++j) {
           const PathState& path = paths[t][j];
-          const size_t p = pixel[t][j];
-          float* rgb = pixels.rgb.data() + 3 * p;
-          rgb[0] = path.color.r, rgb[1] = path.color.g, rgb[2] = path.color.b;
-          pixels.steps[p] = float(path.steps);
-          FrameStats one;
-          one.steps = one.maxStepsPerRay = path.steps;
-          one.triangleTests = one.maxTriangleTestsPerRay = path.triangleTests;
-          addPixelCounts(counts, one);
+          writePixel(pixels, pixel[t][j], path.color, path.steps, path.triangleTests, counts);
         }
     }
     rays += traced;
@@ -311,14 +319,8 @@ uint64_t CpuRenderer::tracePrimaryOnly(const CameraBasis& basis, int width, int 
             const size_t pixel = (y0 + y) * size_t(width) + x0 + x;
             const Hit& hit = packetHits[g][k];
             const glm::vec3 color = shadePrimaryOnly(scene_, epsilon_, packet.ray(int(k)), hit, table_);
-            float* rgb = pixels.rgb.data() + 3 * pixel;  // not copy_n: that called memmove per pixel
-            rgb[0] = color.r, rgb[1] = color.g, rgb[2] = color.b;
             const RayStats& stats = packetStats[g][k];
-            pixels.steps[pixel] = float(stats.steps);
-            counts.steps += stats.steps;
-            counts.triangleTests += stats.triangleTests;
-            counts.maxStepsPerRay = std::max<uint64_t>(counts.maxStepsPerRay, stats.steps);
-            counts.maxTriangleTestsPerRay = std::max<uint64_t>(counts.maxTriangleTestsPerRay, stats.triangleTests);
+            writePixel(pixels, pixel, color, stats.steps, stats.triangleTests, counts);
             if (hits) (*hits)[pixel] = hit;
           }
       }
@@ -423,16 +425,10 @@ FrameResult CpuRenderer::render(const CameraSpec& camera, int width, int height,
   }
   result.stats.frameMs = frameMs(start) - std::chrono::duration<double, std::milli>(excluded).count();
 
-  result.rgb.reserve(3 * elements);
-  result.steps.reserve(elements);
-  for (const PathState& p : paths) {
-    result.steps.push_back(float(p.steps));
-    result.rgb.insert(result.rgb.end(), {p.color.r, p.color.g, p.color.b});
-    FrameStats counts;
-    counts.steps = counts.maxStepsPerRay = p.steps;
-    counts.triangleTests = counts.maxTriangleTestsPerRay = p.triangleTests;
-    addPixelCounts(result.stats, counts);
-  }
+  result.rgb.resize(3 * elements);
+  result.steps.resize(elements);
+  for (size_t i = 0; i < elements; ++i)
+    writePixel(result, i, paths[i].color, paths[i].steps, paths[i].triangleTests, result.stats);
   return result;
 }
 

@@ -7,7 +7,7 @@
 Per scene and row, for primary rays (`-b 1`), frames with shadow rays (`-b 2`,
 the thesis's shading: a primary and a shadow ray per pixel) and AO rays
 (`--shading ao --ao-samples 4`), one passtrace run each, `--threads 2`, the
-minimum of `-m 2` frames:
+minimum of `-m 10` frames (CPU renderers) or `-m 2` (stream path):
 
   scenes  the procedural sphere field `-s spheres --triangles N` at each N of
           --triangles-list, and the real scenes dragon (871K), conference and
@@ -87,7 +87,13 @@ KINDS = {
 }
 KIND_TITLES = {"primary": "primary rays (`-b 1`)", "shadow": "frames with shadow rays (`-b 2`)",
                "ao": f"AO rays (`--shading ao --ao-samples {AO_SAMPLES}`)"}
-FRAMES = 2    # -m per run: the minimum of 2 frames; the rounds repeat the runs
+# -m per run, by renderer: the minimum of that many frames; the rounds repeat the runs.
+# CPU frames take 10-200 ms, so ten cost a second or two beside a build of
+# seconds, and their minimum steps over a busy moment that two do not (5 M
+# spheres, primary rays, Embree -r 3 over bvh8-packet: 1.05 in the stop-54
+# report at -m 2, 1.18-1.42 per round at -m 10 by hand). Stream frames take up
+# to seconds at scale: two.
+FRAMES = {"cpu": 10, "embree": 10, "gpu": 2}
 THREADS = 2
 TOOL_REPEATS = 3
 SPHERES_DEFAULT = 1_000_000  # kSphereFieldDefaultTriangles: what the tools load as "spheres"
@@ -153,7 +159,7 @@ class Plan:
                 for kind in kinds:
                     for name, renderer in rotated:
                         args = scene_args + ["-r", RENDERER_IDS[renderer], "-a", name, "-w", str(size),
-                                             "-m", str(FRAMES), "--threads", str(THREADS)] + KINDS[kind]
+                                             "-m", str(FRAMES[renderer]), "--threads", str(THREADS)] + KINDS[kind]
                         key = f"scale__{label}__{renderer}__{name}__{kind}__r{k + 1}"
                         self.jobs.append(("run", {"key": key, "scene": label, "requested": requested,
                                                   "renderer": renderer, "structure": name, "kind": kind,
@@ -662,9 +668,21 @@ def plot(out_dir, cells, plan):
     return paths
 
 
+def frames_run(records):
+    """Per renderer, the -m its runs were made with, as the records say ("2, 10" if they differ): a
+    report rewritten from older records (--report-only) then states what was measured."""
+    seen = {renderer: set() for renderer in RENDERER_IDS}
+    for _, record in records:
+        args = record.get("args") or []
+        if record.get("renderer") in seen and "-m" in args[:-1]:
+            seen[record["renderer"]].add(int(args[args.index("-m") + 1]))
+    return {renderer: ", ".join(str(v) for v in sorted(values)) or "?" for renderer, values in seen.items()}
+
+
 def write_report(out_dir, results, records, plan):
     cells, tools = collect(records, plan)
     p, m = results["parameters"], results["machine"]
+    frames = frames_run(records)
     notes = []
     lines = [
         "# Scaling: the fast rows from 10⁵ to 10⁸ triangles (issue 36)", "",
@@ -675,7 +693,8 @@ def write_report(out_dir, results, records, plan):
         f"GL: {m.get('gl_renderer')}; commit {(m.get('git_commit') or '?')[:10]}"
         f"{' (with local changes)' if m.get('git_dirty') else ''}, {m.get('binary')} built "
         f"{m.get('binary_mtime')}.", "",
-        f"{p['size']}² pixels, `--threads {THREADS}`, each run the minimum of `-m {FRAMES}` frames; "
+        f"{p['size']}² pixels, `--threads {THREADS}`, each run the minimum of `-m {frames['cpu']}` frames on the CPU "
+        f"renderers (`-r 1`, `-r 3`) and of `-m {frames['gpu']}` on the stream path; "
         f"{p['rounds']} round(s): per scene every row and ray kind runs once per round, the rows' order rotated "
         "each round, so that a busy minute hits all rows alike. Mrays/s (best) is the best round's, frame ms "
         "the least over the rounds, the ratios are taken within this run. Stream rows (`-r 2`) at passtrace's "
