@@ -51,8 +51,14 @@ void main() {
     // into contiguous ranges of groups, one per thread (llvmpipe), then gives
     // every thread tiles spread evenly over the whole stream.
     uint tile = uTileBits_ == 0u ? 0u : bitfieldReverse(group) >> (32u - uTileBits_);
-    pixel = uvec2((tile % tilesPerRow) * 8u + (gl_LocalInvocationIndex & 7u),
-                  (tile / tilesPerRow) * 8u + (gl_LocalInvocationIndex >> 3u));
+    // Each run of 8 invocations (one SIMD vector of llvmpipe's AVX2 code) is
+    // a 4x2 block, as its fragment shaders' two quads are, not a row of 8:
+    // rays of a squarer block part later in the walk (the bunny's primary
+    // frame 1.87x -> 1.5x the fragment stage's time, docs/bench-speed/NOTES.md).
+    // Runs of 32 (a warp) are 8x4 blocks.
+    uint i_ = gl_LocalInvocationIndex;
+    pixel = uvec2((tile % tilesPerRow) * 8u + ((i_ & 3u) | ((i_ >> 1u) & 4u)),
+                  (tile / tilesPerRow) * 8u + (((i_ >> 2u) & 1u) | ((i_ >> 3u) & 6u)));
     live = group < (1u << uTileBits_) && tile < tiles && all(lessThan(pixel, uStreamSize_));
     element = pixel.y * uStreamSize_.x + pixel.x;
   }
