@@ -17,6 +17,11 @@ namespace {
 
 const std::vector<int> kAllSurfaces = {kOriginSurface,  kDirectionSurface,  kStateSurface,  kHitSurface,
                                        kColorSurface,   kThroughputSurface, kPendingSurface};
+// The last bounce's shading: what render() reads afterwards, the colour and
+// the counters (throughput's and pending's w). The rest is not stored, which
+// in the compute stage saves an image store per element and surface.
+constexpr int kNone = InOutStream::kNoSurface;
+const std::vector<int> kFinalSurfaces = {kNone, kNone, kNone, kNone, kColorSurface, kThroughputSurface, kPendingSurface};
 
 using Clock = std::chrono::steady_clock;
 
@@ -172,10 +177,9 @@ bool GpuRenderer::fusedPrimaryBounce(const CameraBasis& basis, int bounces, bool
   rays_.clearDepth(1.0f);
   // After the last bounce only the colour and the counters are read (and the
   // primary hits for --hits): the other surfaces are not written.
-  constexpr int kNone = InOutStream::kNoSurface;
-  rays_.setWriteSurfaces(bounces > 1 ? kAllSurfaces
-                                     : std::vector<int>{kNone, kNone, kNone, captureHits ? kHitSurface : kNone,
-                                                        kColorSurface, kThroughputSurface, kPendingSurface});
+  std::vector<int> writes = bounces > 1 ? kAllSurfaces : kFinalSurfaces;
+  if (captureHits) writes[kHitSurface] = kHitSurface;
+  rays_.setWriteSurfaces(writes);
   fused_->execute();
   // A ray that needs more steps than one pass may run (the loop budget):
   // the whole bounce runs again pass by pass, which is exact.
@@ -243,7 +247,9 @@ FrameResult GpuRenderer::render(const CameraSpec& camera, int bounces, bool capt
     }
 
     rays_.clearDepth(1.0f);
-    rays_.setWriteSurfaces(kAllSurfaces);
+    // After the thesis's last bounce only the colour and the counters are read
+    // (the primary hits were read above), as after the fused bounce.
+    rays_.setWriteSurfaces(thesis && bounce == bounces ? kFinalSurfaces : kAllSurfaces);
     if (thesis) {
       shade_.set("uLastBounce", bounce == bounces ? 1 : 0);
       shade_.execute();
