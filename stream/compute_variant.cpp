@@ -53,8 +53,8 @@ void main() {
     uint tile = uTileBits_ == 0u ? 0u : bitfieldReverse(group) >> (32u - uTileBits_);
     // Each run of 8 invocations (one SIMD vector of llvmpipe's AVX2 code) is
     // a 4x2 block, as its fragment shaders' two quads are, not a row of 8:
-    // rays of a squarer block part later in the walk (the bunny's primary
-    // frame 1.87x -> 1.5x the fragment stage's time, docs/bench-speed/NOTES.md).
+    // rays of a squarer block part later in the walk (bvh-octant-fused's bunny
+    // frame 1.72-1.91x -> 1.39-1.59x the fragment stage's, docs/bench-speed/NOTES.md).
     // Runs of 32 (a warp) are 8x4 blocks.
     uint i_ = gl_LocalInvocationIndex;
     pixel = uvec2((tile % tilesPerRow) * 8u + ((i_ & 3u) | ((i_ >> 1u) & 4u)),
