@@ -51,5 +51,16 @@ float packIndex(uint index) { return uintBitsToFloat(index + 0x00800000u); }
 uint unpackIndex(float bits) { return floatBitsToUint(bits) - 0x00800000u; }
 
 // This fragment's own element of a stream surface (the only texel a kernel
-// may read from a surface it also writes).
+// may read from a surface it also writes), and the element at `texel` of a
+// surface of a stream `width` elements wide. The compute stage keeps
+// surfaces as buffers in tile order (stream/element_slots.h; its variant
+// defines COMPUTE_STAGE, elementSlot_ and slotOf_).
+#ifdef COMPUTE_STAGE
+vec4 readElement(samplerBuffer surface) { return texelFetch(surface, int(elementSlot_)); }
+vec4 readElementAt(samplerBuffer surface, ivec2 texel, uint width) {
+  return texelFetch(surface, int(slotOf_(uvec2(texel), width)));
+}
+#else
 vec4 readElement(sampler2D surface) { return texelFetch(surface, ivec2(gl_FragCoord.xy), 0); }
+vec4 readElementAt(sampler2D surface, ivec2 texel, uint width) { return texelFetch(surface, texel, 0); }
+#endif

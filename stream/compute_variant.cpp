@@ -8,6 +8,20 @@
 namespace passtrace {
 namespace {
 
+// Globals the kernel's own code may use (texel_address.glsl's readElement),
+// so they go before it: the element's slot in the stream's surfaces and how
+// to find another's (stream/element_slots.h, whose twin slotOf_ is).
+const char* const kVariantGlobals = R"(#define COMPUTE_STAGE 1
+vec4 fragCoord_;
+float fragDepth_;
+bool discarded_;
+uint elementSlot_;
+uint slotOf_(uvec2 p, uint width) {
+  uint tile = (p.y >> 3u) * ((width + 7u) >> 3u) + (p.x >> 3u);
+  return tile * 64u + ((p.x & 3u) | ((p.y & 1u) << 2u) | ((p.x & 4u) << 1u) | ((p.y & 6u) << 3u));
+}
+)";
+
 // The variant's main: which element this invocation is, the kernel's main as
 // a function, then what the fragment stage's fixed function would do. A
 // subgroup's appends and counts are gathered by a ballot first
@@ -22,6 +36,8 @@ uniform uint uTileBits_;     // every element: the dispatch is 2^uTileBits_ grou
 uniform uint uWriteMask_;    // bit N: output N is stored
 uniform uint uCull_;         // 1: build the next active list from the elements that discard
 uniform uint uCountPassed_;  // 1: count the elements that do not discard
+uniform uint uStoreImages_;  // 1: outputs go to image units, not the storage block (inout_stream.h)
+layout(std430, binding = 4) writeonly buffer StreamSurfaces_ { vec4 surfaceSlots_[]; };
 layout(std430, binding = 7) readonly buffer ActiveList_ { uint activeHeader_[4]; uint activeIndex_[]; };
 layout(std430, binding = 6) buffer NextList_ { uint nextHeader_[4]; uint nextIndex_[]; };
 layout(std430, binding = 5) buffer PassedCount_ { uint passedCount_; };
@@ -42,6 +58,7 @@ void main() {
     if (live) {
       element = activeIndex_[entry];
       pixel = uvec2(element % uStreamSize_.x, element / uStreamSize_.x);
+      elementSlot_ = slotOf_(pixel, uStreamSize_.x);
     }
   } else {
     uint tilesPerRow = (uStreamSize_.x + 7u) / 8u;
@@ -61,6 +78,7 @@ void main() {
                   (tile / tilesPerRow) * 8u + (((i_ >> 2u) & 1u) | ((i_ >> 3u) & 6u)));
     live = group < (1u << uTileBits_) && tile < tiles && all(lessThan(pixel, uStreamSize_));
     element = pixel.y * uStreamSize_.x + pixel.x;
+    elementSlot_ = tile * 64u + i_;  // = slotOf_(pixel, uStreamSize_.x)
   }
   bool kept = false, passed = false;
   if (live && pixel.y >= uRowsRun_) {
@@ -71,8 +89,8 @@ void main() {
     fragmentMain_();
     passed = !discarded_;
     kept = uCull_ != 0u && discarded_;
-    if (passed && uCull_ == 0u) {
-      ivec2 texel = ivec2(pixel);
+    if (passed && uCull_ == 0u && uStoreImages_ != 0u) {
+%IMAGE_STORES%    } else if (passed && uCull_ == 0u) {
 %STORES%    }
   }
   // The subgroup's first lane reserves the slots of every lane that keeps its element.
@@ -112,7 +130,10 @@ std::string computeVariant(std::string source) {
     head += (*it)[2].str() + "\n";
   source = std::regex_replace(source, extension, "$1");
   head += "#extension GL_ARB_shader_ballot : require\n#extension GL_ARB_gpu_shader_int64 : require\n";
-  source.insert(source.find('\n') + 1, head + "vec4 fragCoord_;\nfloat fragDepth_;\nbool discarded_;\n");
+  source.insert(source.find('\n') + 1, head + kVariantGlobals);
+  // Stream surfaces are buffer textures here (InOutStream); kernels read them
+  // through texel_address.glsl's functions, which COMPUTE_STAGE switches.
+  source = std::regex_replace(source, std::regex(R"(\buniform\s+sampler2D\b)"), "uniform samplerBuffer");
 
   std::vector<std::pair<std::string, std::string>> outputs;  // image unit, name
   const std::regex output(R"(layout\s*\(\s*location\s*=\s*(\d+)\s*\)\s*out\s+vec4\s+(\w+)\s*;)");
@@ -121,16 +142,19 @@ std::string computeVariant(std::string source) {
   source = std::regex_replace(source, output, "vec4 $2;");
   source = std::regex_replace(source, mainSignature, "void fragmentMain_()");
 
-  std::string stores;
+  std::string stores, imageStores;
   for (const auto& [unit, name] : outputs) {
-    source += "layout(rgba32f, binding = " + unit + ") uniform writeonly image2D " + name + "Image_;\n";
-    stores += "      if ((uWriteMask_ & " + std::to_string(1u << std::stoi(unit)) + "u) != 0u) imageStore(" + name +
-              "Image_, texel, " + name + ");\n";
+    source += "layout(rgba32f, binding = " + unit + ") uniform writeonly imageBuffer " + name + "Image_;\n";
+    source += "uniform uint uOutputSlot" + unit + "_;  // the first slot of the surface output " + unit + " goes to\n";
+    const std::string written = "      if ((uWriteMask_ & " + std::to_string(1u << std::stoi(unit)) + "u) != 0u) ";
+    stores += written + "surfaceSlots_[uOutputSlot" + unit + "_ + elementSlot_] = " + name + ";\n";
+    imageStores += written + "imageStore(" + name + "Image_, int(elementSlot_), " + name + ");\n";
   }
   std::string main = kComputeMain;
   main.replace(main.find("%STORES%"), 8, stores);
+  main.replace(main.find("%IMAGE_STORES%"), 14, imageStores);
   static_assert(kComputeGroupSize == 64 && kComputeTileSide == 8 && kActiveListBinding == 7 &&
-                    kNextListBinding == 6 && kPassedCountBinding == 5,
+                    kNextListBinding == 6 && kPassedCountBinding == 5 && kStreamSurfacesBinding == 4,
                 "kComputeMain spells these numbers out");
   return source + main;
 }

@@ -23,11 +23,17 @@ constexpr int kComputeTileSide = 8;
 constexpr int kActiveListBinding = 7;   // the elements this dispatch runs
 constexpr int kNextListBinding = 6;     // the cull kernel's output: the elements still active
 constexpr int kPassedCountBinding = 5;  // elements that did not discard (the occlusion count)
+constexpr int kStreamSurfacesBinding = 4;  // the enabled stream's surfaces (InOutStream::surfaceBuffer)
 
 // Rewrites an assembled fragment kernel:
 //   - each `layout(location = N) out vec4 NAME;` becomes a global NAME that is
-//     stored, after the kernel's main, to `image2D` unit N (rgba32f) when bit
-//     N of `uWriteMask_` is set (a surface the pass writes);
+//     stored, after the kernel's main, when bit N of `uWriteMask_` is set (a
+//     surface the pass writes): to the element's slot (stream/element_slots.h)
+//     past `uOutputSlotN_` in the storage block at kStreamSurfacesBinding, or
+//     with `uStoreImages_` to `imageBuffer` unit N (rgba32f);
+//   - `uniform sampler2D` (a stream surface) becomes `samplerBuffer`, and
+//     COMPUTE_STAGE is defined, which switches texel_address.glsl's
+//     readElement and readElementAt to the tile-order slots;
 //   - `discard;` (allowed in main only) ends the element's work with nothing
 //     stored; gl_FragDepth becomes a local that is never read;
 //   - gl_FragCoord becomes the element's pixel centre, gl_HelperInvocation

@@ -7,9 +7,13 @@
 // own texel (GL 4.5 texture-barrier rules; StreamKernel issues the barrier).
 //
 // A stream made in the compute stage (stream/stream_stage.h) has no
-// framebuffer: its kernels store to the surfaces as images, and the active
-// elements are an ActiveElements list instead of the depth buffer. Its
-// depth calls keep their meaning (1 active, 0 finished).
+// framebuffer: its surfaces are one buffer, surface after surface, each in
+// tile order (stream/element_slots.h), which kernels read through buffer
+// textures and store to as one storage block (or, past the largest block the
+// driver allows, through image units). The active elements are an
+// ActiveElements list instead of the depth buffer. Its depth calls keep
+// their meaning (1 active, 0 finished); upload() and read() take and give
+// elements in row order in both stages.
 
 #include <cstdint>
 #include <memory>
@@ -62,7 +66,20 @@ class InOutStream {
   // The compute stage's active elements (null in the fragment stage).
   ActiveElements* activeElements() { return active_.get(); }
 
+  // The texture kernels read a surface through: 2-D in the fragment stage, a
+  // buffer texture in the compute stage.
   GLuint surfaceTexture(int surface) const { return surfaces_.at(surface); }
+  // Compute stage: the buffer holding every surface, surface k from slot
+  // k * surfaceSlots(); whether kernels store to it through image units
+  // rather than one storage block.
+  GLuint surfaceBuffer() const { return buffer_; }
+  uint64_t surfaceSlots() const { return slots_; }
+  bool storesThroughImages() const { return storesThroughImages_; }
+  // Compute-stage streams made afterwards store through a storage block only
+  // when all their surfaces fit in `bytes` (0, the default: the driver's
+  // largest block, storageBlockLimitBytes()). Tests lower it to run the
+  // image path on small streams.
+  static void limitStorageBlock(uint64_t bytes);
 
   void clearSurface(int surface, const glm::vec4& value);
   // Depth 1 marks an element active, 0 finished (kernels draw at depth 0.5 with GL_LESS).
@@ -82,13 +99,18 @@ class InOutStream {
   void restoreDepth();
 
  private:
+  void createSurfaceBuffer();  // the compute stage's surfaces
+  GLintptr surfaceOffset(int surface) const;  // compute stage: where a surface starts in buffer_
   int width_, height_;
   StreamStage stage_;
   std::unique_ptr<ActiveElements> active_;  // compute stage only
   GLuint framebuffer_ = 0;
   GLuint depth_ = 0;
   GLuint savedDepth_ = 0;  // saveDepth()'s copy; 0 until first used
-  std::vector<GLuint> surfaces_;
+  std::vector<GLuint> surfaces_;  // textures (fragment) or buffer textures (compute)
+  GLuint buffer_ = 0;             // compute stage: every surface, in tile order
+  uint64_t slots_ = 0;            // compute stage: slots per surface
+  bool storesThroughImages_ = false;
   std::vector<int> writeSurfaces_;
   int rowLimit_ = 0;
 };

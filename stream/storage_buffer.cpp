@@ -6,13 +6,12 @@
 #include "stream/gl_error.h"
 
 namespace passtrace {
-namespace {
 
-// The largest block a kernel may bind. llvmpipe reports 128 MiB, Mesa's
-// default, yet addresses blocks up to 2 GiB (31-bit byte offsets): measured,
-// a 2880^2 bvh-stack stream's 1.9 GiB of stacks gives the same hits as
-// kk-bvh, and 3.5 GiB crash it. Other drivers: what they report.
-uint64_t blockLimitBytes() {
+// llvmpipe reports 128 MiB, Mesa's default, yet addresses blocks up to 2 GiB
+// (31-bit byte offsets): measured, a 2880^2 bvh-stack stream's 1.9 GiB of
+// stacks gives the same hits as kk-bvh, and 3.5 GiB crash it. Other
+// drivers: what they report.
+uint64_t storageBlockLimitBytes() {
   GLint64 reported = 0;
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &reported);
   const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
@@ -21,11 +20,13 @@ uint64_t blockLimitBytes() {
   return llvmpipe ? std::max<uint64_t>(limit, (uint64_t(1) << 31) - 1) : limit;
 }
 
+namespace {
+
 // A kernel binds the whole buffer as one block, and a block past the limit
 // is undefined: llvmpipe crashes (a 4096^2 bvh-stack stream's 3.5 GiB of
 // stacks). Say so instead.
 void checkBlockSize(const std::string& what, uint64_t bytes) {
-  const uint64_t limit = blockLimitBytes();
+  const uint64_t limit = storageBlockLimitBytes();
   if (limit > 0 && bytes > limit)
     throw GlError(what + ": " + std::to_string(bytes >> 20) + " MiB exceed this driver's largest storage buffer (" +
                   std::to_string(limit >> 20) + " MiB); use a smaller image or the CPU renderer");

@@ -14,6 +14,9 @@
 
 namespace passtrace {
 
+// The largest storage block a kernel may bind, in bytes (0: unknown).
+uint64_t storageBlockLimitBytes();
+
 class StorageBuffer {
  public:
   // `what` names the data in error messages.

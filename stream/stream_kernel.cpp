@@ -86,13 +86,19 @@ void StreamKernel::bindInput(const char* name, const ConstInputStream& stream) {
 }
 
 void StreamKernel::bindInput(const char* sampler, const InOutStream& stream, int surface) {
+  if (stream.stage() != stage_)  // the stages keep surfaces differently (inout_stream.h)
+    throw GlError("kernel " + name_ + ": " + sampler + " is a surface of a stream of the other stage");
   bindTexture(sampler, stream.surfaceTexture(surface));
 }
 
 void StreamKernel::bindStorage(GLuint binding, const StorageBuffer& buffer) { storage_[binding] = &buffer; }
 
 void StreamKernel::bindOutput(GLuint location, const InOutStream& stream, int surface) {
-  outputs_[location] = stream.surfaceTexture(surface);
+  if (stream.stage() != Stage::Compute) throw GlError("kernel " + name_ + ": bindOutput() needs a compute-stage stream");
+  if (!outputs_.empty() && outputStream_ != &stream)
+    throw GlError("kernel " + name_ + ": dispatch() writes the surfaces of one stream");
+  outputStream_ = &stream;
+  outputs_[location] = surface;
 }
 
 void StreamKernel::bindResources() {
@@ -103,13 +109,12 @@ void StreamKernel::bindResources() {
 
 void StreamKernel::dispatch(int width, int height) {
   if (stage_ != Stage::Compute) throw GlError("kernel " + name_ + ": dispatch() needs Stage::Compute");
+  if (outputStream_ && (outputStream_->width() != width || outputStream_->height() < height))
+    throw GlError("kernel " + name_ + ": dispatch() covers elements of its output stream's width");
   bindResources();
-  GLuint mask = 0;
-  for (const auto& [unit, texture] : outputs_) {
-    glBindImageTexture(unit, texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    mask |= 1u << unit;
-  }
-  glProgramUniform1ui(program_, location("uWriteMask_"), mask);
+  std::vector<int> writes(InOutStream::kMaxSurfaces, InOutStream::kNoSurface);
+  for (const auto& [unit, surface] : outputs_) writes.at(unit) = surface;
+  if (outputStream_) bindOutputs(*outputStream_, writes);
   if (!dispatchElements_ || dispatchElements_->width() != width || dispatchElements_->height() != height)
     dispatchElements_ = std::make_unique<ActiveElements>(width, height);
   dispatchElements_->reset(true);
@@ -117,25 +122,34 @@ void StreamKernel::dispatch(int width, int height) {
   checkGlError("dispatching kernel " + name_);
 }
 
-// The compute stage: the outputs the stream's write surfaces name become
-// image stores, the elements the active ones.
+// Output k of a compute-stage kernel goes to surface writes[k] of the
+// stream (none where kNoSurface or past the list): its first slot in the
+// stream's buffer, bound as one storage block, or the surface's image.
+void StreamKernel::bindOutputs(const InOutStream& stream, const std::vector<int>& writes) {
+  GLuint mask = 0;
+  for (int k = 0; k < InOutStream::kMaxSurfaces; ++k) {
+    const int surface = k < int(writes.size()) ? writes[size_t(k)] : InOutStream::kNoSurface;
+    if (surface == InOutStream::kNoSurface) continue;
+    mask |= 1u << k;
+    const std::string slot = "uOutputSlot" + std::to_string(k) + "_";
+    glProgramUniform1ui(program_, location(slot.c_str()), GLuint(uint64_t(surface) * stream.surfaceSlots()));
+    if (stream.storesThroughImages())
+      glBindImageTexture(GLuint(k), stream.surfaceTexture(surface), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  }
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kStreamSurfacesBinding, stream.surfaceBuffer());
+  glProgramUniform1ui(program_, location("uStoreImages_"), stream.storesThroughImages() ? 1u : 0u);
+  glProgramUniform1ui(program_, location("uWriteMask_"), mask);
+}
+
+// The compute stage: the outputs the stream's write surfaces name are
+// stored to them, the elements the active ones.
 uint64_t StreamKernel::executeCompute(bool countFragments) {
   InOutStream* stream = InOutStream::enabled();
   if (!stream || stream->stage() != Stage::Compute)
     throw GlError("kernel " + name_ + ": a compute-stage kernel runs on an enabled compute-stage stream");
   bindResources();
-  GLuint mask = 0;
-  const std::vector<int>& writes = stream->writeSurfaces();
-  for (int k = 0; k < stream->surfaceCount(); ++k) {
-    const int surface = k < int(writes.size()) ? writes[size_t(k)] : InOutStream::kNoSurface;
-    // The cull kernel only retires elements (as its colour mask off does).
-    const bool written = surface != InOutStream::kNoSurface && depth_ != Depth::Cull;
-    // An unwritten unit still gets a texture of the right format; nothing is stored to it.
-    glBindImageTexture(GLuint(k), stream->surfaceTexture(written ? surface : k), 0, GL_FALSE, 0, GL_WRITE_ONLY,
-                       GL_RGBA32F);
-    if (written) mask |= 1u << k;
-  }
-  glProgramUniform1ui(program_, location("uWriteMask_"), mask);
+  // The cull kernel only retires elements (as its colour mask off does).
+  bindOutputs(*stream, depth_ == Depth::Cull ? std::vector<int>{} : stream->writeSurfaces());
   const uint64_t count = stream->activeElements()->dispatch(program_, stream->rowsRun(),
                                                             depth_ == Depth::Cull, countFragments);
   checkGlError("executing kernel " + name_);

@@ -90,6 +90,7 @@ class StreamKernel {
 
   void bindResources();
   uint64_t executeCompute(bool countFragments);
+  void bindOutputs(const InOutStream& stream, const std::vector<int>& writes);
 
   std::string name_;
   Depth depth_;
@@ -100,7 +101,8 @@ class StreamKernel {
   std::map<std::string, GLint> locations_;
   std::map<std::string, std::pair<GLuint, GLuint>> textures_;  // sampler -> (unit, texture)
   std::map<GLuint, const StorageBuffer*> storage_;             // binding point -> buffer
-  std::map<GLuint, GLuint> outputs_;                           // dispatch(): image unit -> texture
+  std::map<GLuint, int> outputs_;                              // dispatch(): output location -> surface
+  const InOutStream* outputStream_ = nullptr;                  // dispatch(): whose surfaces
   std::unique_ptr<ActiveElements> dispatchElements_;            // dispatch()'s every-element list
 };
 

@@ -1,6 +1,7 @@
 // Compaction, pass 2 (drawn into the compact stream): each slot below
 // uLive copies every surface of its home element; the slots after them in
 // the last blocks get zeros (state w = 0, retired by the next cull).
+#include "texel_address.glsl"
 #include "compact/compact_layout.glsl"
 
 layout(early_fragment_tests) in;
@@ -43,26 +44,26 @@ void main() {
   uint slot = compactSlot(ivec2(gl_FragCoord.xy));
   bool live = slot < uLive;
   ivec2 from = live ? homeTexel(homes[slot]) : ivec2(0);
-  out0 = live ? texelFetch(uSurface0, from, 0) : vec4(0.0);
+  out0 = live ? readElementAt(uSurface0, from, uHomeWidth) : vec4(0.0);
 #if SURFACES > 1
-  out1 = live ? texelFetch(uSurface1, from, 0) : vec4(0.0);
+  out1 = live ? readElementAt(uSurface1, from, uHomeWidth) : vec4(0.0);
 #endif
 #if SURFACES > 2
-  out2 = live ? texelFetch(uSurface2, from, 0) : vec4(0.0);
+  out2 = live ? readElementAt(uSurface2, from, uHomeWidth) : vec4(0.0);
 #endif
 #if SURFACES > 3
-  out3 = live ? texelFetch(uSurface3, from, 0) : vec4(0.0);
+  out3 = live ? readElementAt(uSurface3, from, uHomeWidth) : vec4(0.0);
 #endif
 #if SURFACES > 4
-  out4 = live ? texelFetch(uSurface4, from, 0) : vec4(0.0);
+  out4 = live ? readElementAt(uSurface4, from, uHomeWidth) : vec4(0.0);
 #endif
 #if SURFACES > 5
-  out5 = live ? texelFetch(uSurface5, from, 0) : vec4(0.0);
+  out5 = live ? readElementAt(uSurface5, from, uHomeWidth) : vec4(0.0);
 #endif
 #if SURFACES > 6
-  out6 = live ? texelFetch(uSurface6, from, 0) : vec4(0.0);
+  out6 = live ? readElementAt(uSurface6, from, uHomeWidth) : vec4(0.0);
 #endif
 #if SURFACES > 7
-  out7 = live ? texelFetch(uSurface7, from, 0) : vec4(0.0);
+  out7 = live ? readElementAt(uSurface7, from, uHomeWidth) : vec4(0.0);
 #endif
 }

@@ -1,5 +1,6 @@
 // Compaction, pass 3 (drawn into the ray stream, live elements only): each
 // element copies every surface back from the slot it was gathered to.
+#include "texel_address.glsl"
 #include "compact/compact_layout.glsl"
 
 layout(early_fragment_tests) in;
@@ -38,26 +39,26 @@ layout(location = 7) out vec4 out7;
 void main() {
   if (gl_HelperInvocation) return;  // its storage reads may lie past the buffer (docs/design.md)
   ivec2 from = compactTexel(slotOf[homeIndex(ivec2(gl_FragCoord.xy))]);
-  out0 = texelFetch(uSurface0, from, 0);
+  out0 = readElementAt(uSurface0, from, 4u * uBlocksPerRow);
 #if SURFACES > 1
-  out1 = texelFetch(uSurface1, from, 0);
+  out1 = readElementAt(uSurface1, from, 4u * uBlocksPerRow);
 #endif
 #if SURFACES > 2
-  out2 = texelFetch(uSurface2, from, 0);
+  out2 = readElementAt(uSurface2, from, 4u * uBlocksPerRow);
 #endif
 #if SURFACES > 3
-  out3 = texelFetch(uSurface3, from, 0);
+  out3 = readElementAt(uSurface3, from, 4u * uBlocksPerRow);
 #endif
 #if SURFACES > 4
-  out4 = texelFetch(uSurface4, from, 0);
+  out4 = readElementAt(uSurface4, from, 4u * uBlocksPerRow);
 #endif
 #if SURFACES > 5
-  out5 = texelFetch(uSurface5, from, 0);
+  out5 = readElementAt(uSurface5, from, 4u * uBlocksPerRow);
 #endif
 #if SURFACES > 6
-  out6 = texelFetch(uSurface6, from, 0);
+  out6 = readElementAt(uSurface6, from, 4u * uBlocksPerRow);
 #endif
 #if SURFACES > 7
-  out7 = texelFetch(uSurface7, from, 0);
+  out7 = readElementAt(uSurface7, from, 4u * uBlocksPerRow);
 #endif
 }

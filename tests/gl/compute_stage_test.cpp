@@ -2,7 +2,8 @@
 // registry renders in the compute stage what it renders in the fragment
 // stage, bit for bit (image, per-pixel steps, counts, passes and primary
 // hits), with the per-pass schedule (-l), compaction and the shading mixes;
-// and its primary hits are brute force's (ties aside).
+// and its primary hits are brute force's (ties aside); also where its
+// streams store through image units.
 
 #include <gtest/gtest.h>
 
@@ -13,6 +14,7 @@
 #include "render/camera.h"
 #include "render/gpu_renderer.h"
 #include "scenes/scene_registry.h"
+#include "stream/inout_stream.h"
 #include "tests/frame_checks.h"
 #include "tests/gl_test_support.h"
 #include "tests/hit_checks.h"
@@ -76,6 +78,23 @@ TEST_P(ComputeStage, RendersWhatTheFragmentStageRenders) {
       }
     EXPECT_GT(hits, compute.width * compute.height / 8);  // the bunny covers about a sixth of its view
   }
+}
+
+// Streams larger than the driver's largest storage block store through image
+// units instead (stream/inout_stream.h); forced here on small ones: resumed
+// passes and compaction, which reads and writes every surface.
+TEST_P(ComputeStage, ThroughImageUnitsRendersWhatTheFragmentStageRenders) {
+  struct Limit {
+    Limit() { InOutStream::limitStorageBlock(1); }
+    ~Limit() { InOutStream::limitStorageBlock(0); }
+  };
+  const Settings s{"cornell", ShadingMode::Thesis, 2, 3, Compaction::Always};
+  const Scene scene = loadScene(s.scene);
+  const FrameResult fragment = render(scene, GetParam(), s, StreamStage::Fragment);
+  const Limit limit;
+  const FrameResult compute = render(scene, GetParam(), s, StreamStage::Compute);
+  EXPECT_GT(compute.stats.steps, 0u);
+  test::expectSameFrame(compute, fragment);
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryStreamRow, ComputeStage,

@@ -117,18 +117,24 @@ TEST_F(GlTest, RayGenerationMatchesCameraContract) {
 // over the stream's active elements and writes what its fragment pass
 // writes, bit for bit: here all seven surfaces of ray generation, on a
 // stream whose sides are not multiples of the work group's tile, first over
-// every element, then over those a cull left active.
+// every element, then over those a cull left active; its stores go to one
+// storage block, or through image units where a stream is larger than the
+// driver's largest block (forced here).
 TEST_F(GlTest, ComputeStageWritesWhatTheFragmentPassWrites) {
   const int w = 37, h = 23;
   const CameraBasis basis = makeCameraBasis(CameraSpec{{1.0f, 2.0f, 3.0f}, {0.5f, -1.0f, 0.25f}, {0, 1, 0}, 52.0f}, w, h);
   std::vector<glm::vec4> state(size_t(w * h));
   for (size_t i = 0; i < state.size(); ++i) state[i].w = (i * 7919) % 3 == 0 ? 0.0f : 1.0f;  // a third finished
-  std::vector<std::vector<glm::vec4>> written[2];
-  uint64_t retired[2] = {0, 0};
-  std::vector<float> active[2];
-  for (const auto stage : {StreamKernel::Stage::Fragment, StreamKernel::Stage::Compute}) {
-    const StreamStageScope scope(stage);
+  enum { kFragment, kComputeBlock, kComputeImages, kRuns };
+  std::vector<std::vector<glm::vec4>> written[kRuns];
+  uint64_t retired[kRuns] = {};
+  std::vector<float> active[kRuns];
+  for (int run = kFragment; run < kRuns; ++run) {
+    const StreamStageScope scope(run == kFragment ? StreamStage::Fragment : StreamStage::Compute);
+    InOutStream::limitStorageBlock(run == kComputeImages ? 1 : 0);
     InOutStream rays(w, h, kRaySurfaceCount), flags(w, h, 1);
+    InOutStream::limitStorageBlock(0);
+    EXPECT_EQ(rays.storesThroughImages(), run == kComputeImages);
     for (int s = 0; s < kRaySurfaceCount; ++s) rays.upload(s, std::vector<glm::vec4>(size_t(w * h), glm::vec4(-7.0f)));
     flags.upload(0, state);
     StreamKernel raygen("raygen", "raygen.frag");
@@ -139,22 +145,25 @@ TEST_F(GlTest, ComputeStageWritesWhatTheFragmentPassWrites) {
     rays.clearDepth(1.0f);
     rays.setWriteSurfaces({0, 1, 2, 3, 4, 5, 6});
     raygen.execute();
-    for (int s = 0; s < kRaySurfaceCount; ++s) written[int(stage)].push_back(rays.read(s));
-    retired[int(stage)] = cull.execute(true);
-    active[int(stage)] = rays.readDepth();
+    for (int s = 0; s < kRaySurfaceCount; ++s) written[run].push_back(rays.read(s));
+    retired[run] = cull.execute(true);
+    active[run] = rays.readDepth();
     setRaygenCamera(raygen, makeCameraBasis(CameraSpec{{-1.0f, 0.0f, 0.0f}, {0, 0, 0}, {0, 1, 0}, 40.0f}, w, h));
     rays.setWriteSurfaces({InOutStream::kNoSurface, 1});  // only the directions: origins keep the first camera's
     raygen.execute();
     rays.disable();
-    for (int s = 0; s < kRaySurfaceCount; ++s) written[int(stage)].push_back(rays.read(s));
+    for (int s = 0; s < kRaySurfaceCount; ++s) written[run].push_back(rays.read(s));
   }
-  for (size_t s = 0; s < written[0].size(); ++s)
-    for (size_t i = 0; i < size_t(w * h); ++i)
-      ASSERT_EQ(written[1][s][i], written[0][s][i]) << "surface " << s % kRaySurfaceCount << ", element " << i;
+  for (int run : {kComputeBlock, kComputeImages}) {
+    SCOPED_TRACE(run == kComputeBlock ? "stores to a storage block" : "stores through image units");
+    for (size_t s = 0; s < written[0].size(); ++s)
+      for (size_t i = 0; i < size_t(w * h); ++i)
+        ASSERT_EQ(written[run][s][i], written[0][s][i]) << "surface " << s % kRaySurfaceCount << ", element " << i;
+    EXPECT_EQ(retired[run], retired[0]);
+    EXPECT_EQ(active[run], active[0]);
+  }
   EXPECT_EQ(written[1][kOriginSurface].back(), glm::vec4(basis.eye, float(RayKind::Nearest)));  // the last one ran
-  EXPECT_EQ(retired[1], retired[0]);
   EXPECT_EQ(retired[1], uint64_t(std::count_if(state.begin(), state.end(), [](const glm::vec4& e) { return e.w == 0; })));
-  EXPECT_EQ(active[1], active[0]);
   // Elements the cull retired kept the first camera's directions; the others took the second's.
   const size_t finished = 0, live = 1;
   ASSERT_EQ(state[finished].w, 0.0f);
@@ -226,7 +235,7 @@ TEST_F(GlTest, AKernelRefusesAStreamOfTheOtherStage) {
 std::vector<glm::vec4> runFunctionKernel(const char* define, const std::vector<std::vector<glm::vec4>>& inputs,
                                          StreamKernel::Stage stage = StreamKernel::Stage::Fragment) {
   const int n = int(inputs[0].size());
-  InOutStream in(n, 1, 5), out(n, 1, 1, stage);
+  InOutStream in(n, 1, 5, stage), out(n, 1, 1, stage);
   StreamKernel kernel("test", "test_functions.frag", stage, {define});
   const char* names[] = {"uIn0", "uIn1", "uIn2", "uIn3", "uIn4"};
   for (size_t s = 0; s < inputs.size(); ++s) {

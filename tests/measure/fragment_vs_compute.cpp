@@ -86,7 +86,7 @@ int main(int argc, char** argv) {
     const int steps = passStepLimit(loopLimit);
     const auto size = static_cast<uint32_t>(built.sequence.texels.size());
 
-    InOutStream stream(width, width, kRaySurfaceCount);
+    InOutStream stream(width, width, kRaySurfaceCount, StreamStage::Fragment);
     const Rays rays = primaryRays(scene, width);
 
     // The fragment pass, as GpuBvhTraversal draws it.
@@ -112,23 +112,26 @@ int main(int argc, char** argv) {
     }
     const std::vector<glm::vec4> fragmentState = stream.read(kStateSurface), fragmentHit = stream.read(kHitSurface);
 
-    // The same source as a compute shader (StreamKernel::Stage::Compute), over the same textures.
+    // The same source as a compute shader (StreamKernel::Stage::Compute), over
+    // the same rays in a compute-stage stream (its surfaces are buffers).
+    InOutStream computeStream(width, width, kRaySurfaceCount, StreamStage::Compute);
     StreamKernel compute("bvh_traverse", "bvh/bvh_traverse.frag", StreamKernel::Stage::Compute, defines);
     compute.bindInput("uSequence", sequence);
     compute.set("uSequenceSize", size);
     compute.set("uLoopLimit", steps);
-    for (int i = 0; i < 4; ++i) compute.bindInput(samplers[i], stream, surfaces[i]);
-    compute.bindOutput(0, stream, kStateSurface);  // as the fragment pass's draw buffers
-    compute.bindOutput(1, stream, kHitSurface);
+    for (int i = 0; i < 4; ++i) compute.bindInput(samplers[i], computeStream, surfaces[i]);
+    compute.bindOutput(0, computeStream, kStateSurface);  // as the fragment pass's draw buffers
+    compute.bindOutput(1, computeStream, kHitSurface);
     double computeMs = std::numeric_limits<double>::infinity();
     for (int r = -1; r < repeats; ++r) {
-      reset(stream, rays);
+      reset(computeStream, rays);
       const auto start = Clock::now();
       compute.dispatch(width, width);
       glFinish();
       if (r >= 0) computeMs = std::min(computeMs, millisecondsSince(start));
     }
-    const std::vector<glm::vec4> computeState = stream.read(kStateSurface), computeHit = stream.read(kHitSurface);
+    const std::vector<glm::vec4> computeState = computeStream.read(kStateSurface),
+                                 computeHit = computeStream.read(kHitSurface);
     uint64_t differ = 0;
     for (std::size_t i = 0; i < computeState.size(); ++i)
       differ += std::memcmp(&computeState[i], &fragmentState[i], sizeof(glm::vec4)) != 0 ||

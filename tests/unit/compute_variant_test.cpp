@@ -29,14 +29,21 @@ void main() {
 }
 )";
 
-TEST(ComputeVariant, DiscardEndsTheElementAndOutputsBecomeMaskedImageStores) {
+TEST(ComputeVariant, DiscardEndsTheElementAndOutputsBecomeMaskedSlotStores) {
   const std::string v = computeVariant(kKernel);
   EXPECT_EQ(v.find("discard;"), std::string::npos);
   EXPECT_NE(v.find("{ discarded_ = true; return; }"), std::string::npos);
   EXPECT_NE(v.find("void fragmentMain_()"), std::string::npos);
-  EXPECT_NE(v.find("layout(rgba32f, binding = 0) uniform writeonly image2D outStateImage_;"), std::string::npos);
-  EXPECT_NE(v.find("layout(rgba32f, binding = 2) uniform writeonly image2D outHitImage_;"), std::string::npos);
-  EXPECT_NE(v.find("if ((uWriteMask_ & 4u) != 0u) imageStore(outHitImage_, texel, outHit);"), std::string::npos);
+  // Output N goes to the element's slot past its surface's first, or to imageBuffer unit N.
+  EXPECT_NE(v.find("if ((uWriteMask_ & 4u) != 0u) surfaceSlots_[uOutputSlot2_ + elementSlot_] = outHit;"),
+            std::string::npos);
+  EXPECT_NE(v.find("layout(rgba32f, binding = 0) uniform writeonly imageBuffer outStateImage_;"), std::string::npos);
+  EXPECT_NE(v.find("layout(rgba32f, binding = 2) uniform writeonly imageBuffer outHitImage_;"), std::string::npos);
+  EXPECT_NE(v.find("if ((uWriteMask_ & 4u) != 0u) imageStore(outHitImage_, int(elementSlot_), outHit);"),
+            std::string::npos);
+  // A stream surface is read as a buffer texture.
+  EXPECT_NE(v.find("uniform samplerBuffer uState;"), std::string::npos);
+  EXPECT_EQ(v.find("sampler2D"), std::string::npos);
   for (const char* gone : {"gl_FragCoord", "gl_HelperInvocation", "gl_FragDepth", "early_fragment_tests", "out vec4"})
     EXPECT_EQ(v.find(gone), std::string::npos) << gone;
   // #extension lines move above the variant's globals; the #line after them keeps log lines true.
