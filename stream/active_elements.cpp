@@ -55,10 +55,9 @@ uint64_t ActiveElements::dispatch(unsigned program, int rows, bool cull, bool co
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNextListBinding, out.buffer());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPassedCountBinding, passed_.buffer());
   if (all_) {
-    const GLuint tiles = GLuint((width_ + kComputeTileSide - 1) / kComputeTileSide) *
-                         GLuint((covered + kComputeTileSide - 1) / kComputeTileSide);
-    const GLuint groups = std::bit_ceil(tiles);  // the kernel reverses the group's bits (compute_variant.cpp)
-    setUniform(program, "uTileBits_", GLuint(std::countr_zero(groups)));
+    // One group a tile: group g runs tile g (compute_variant.cpp).
+    const GLuint groups = GLuint((width_ + kComputeTileSide - 1) / kComputeTileSide) *
+                          GLuint((covered + kComputeTileSide - 1) / kComputeTileSide);
     const GLuint x = std::min(groups, kMaxGroupsPerSide);
     glDispatchCompute(x, (groups + x - 1) / x, 1);
   } else {

@@ -32,7 +32,6 @@ layout(local_size_x = 64) in;
 uniform uvec2 uStreamSize_;  // the stream's width and the rows the dispatch covers
 uniform uint uRowsRun_;      // the rows whose elements run (the row limit)
 uniform uint uElementList_;  // 0: every element of those rows, 1: the active list
-uniform uint uTileBits_;     // every element: the dispatch is 2^uTileBits_ groups of 8x8 tiles
 uniform uint uWriteMask_;    // bit N: output N is stored
 uniform uint uCull_;         // 1: build the next active list from the elements that discard
 uniform uint uCountPassed_;  // 1: count the elements that do not discard
@@ -63,11 +62,11 @@ void main() {
   } else {
     uint tilesPerRow = (uStreamSize_.x + 7u) / 8u;
     uint tiles = tilesPerRow * ((uStreamSize_.y + 7u) / 8u);
-    // Group g runs the tile whose index is g's bits reversed (tiles rounded
-    // up to a power of two, 2^uTileBits_): a driver that splits a dispatch
-    // into contiguous ranges of groups, one per thread (llvmpipe), then gives
-    // every thread tiles spread evenly over the whole stream.
-    uint tile = uTileBits_ == 0u ? 0u : bitfieldReverse(group) >> (32u - uTileBits_);
+    // Group g runs tile g, so consecutive groups store to consecutive slots
+    // (element_slots.h). Stop 56 ran tile bitreverse(g) to spread each of
+    // llvmpipe's threads over the image; with the slots in tile order that
+    // made kk-bvh's compute frames 1.2-1.5x longer (docs/bench-speed/NOTES.md).
+    uint tile = group;
     // Each run of 8 invocations (one SIMD vector of llvmpipe's AVX2 code) is
     // a 4x2 block, as its fragment shaders' two quads are, not a row of 8:
     // rays of a squarer block part later in the walk (bvh-octant-fused's bunny
@@ -76,7 +75,7 @@ void main() {
     uint i_ = gl_LocalInvocationIndex;
     pixel = uvec2((tile % tilesPerRow) * 8u + ((i_ & 3u) | ((i_ >> 1u) & 4u)),
                   (tile / tilesPerRow) * 8u + (((i_ >> 2u) & 1u) | ((i_ >> 3u) & 6u)));
-    live = group < (1u << uTileBits_) && tile < tiles && all(lessThan(pixel, uStreamSize_));
+    live = tile < tiles && all(lessThan(pixel, uStreamSize_));
     element = pixel.y * uStreamSize_.x + pixel.x;
     elementSlot_ = tile * 64u + i_;  // = slotOf_(pixel, uStreamSize_.x)
   }
