@@ -63,7 +63,7 @@ void main() {
     uint tilesPerRow = (uStreamSize_.x + 7u) / 8u;
     uint tiles = tilesPerRow * ((uStreamSize_.y + 7u) / 8u);
     // Group g runs tile g, so consecutive groups store to consecutive slots
-    // (element_slots.h). Stop 56 ran tile bitreverse(g) to spread each of
+    // (element_slots.h). It used to run tile bitreverse(g), to spread each of
     // llvmpipe's threads over the image; with the slots in tile order that
     // made kk-bvh's compute frames 1.2-1.5x longer (docs/bench-speed/NOTES.md).
     uint tile = group;
